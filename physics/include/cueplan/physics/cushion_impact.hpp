@@ -1,0 +1,140 @@
+// Ball-cushion impact of Mathavan, Jackson & Parkin (2010), as fixed by
+// shared/PHYSICS.md: a ball with any spin meets a rigid cushion whose nose touches
+// it above its equator; it slips (or sticks) at the cushion and at the cloth while
+// the cushion's normal impulse P_I grows, and leaves with a new velocity and spin.
+//
+// Everything here is a pure function of its arguments: no globals, no hidden state,
+// safe to call from many threads at once.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/vec3.hpp"
+
+namespace cueplan::physics {
+
+class ImpactTable;
+
+// Fixed parameters of the impact. SI units; defaults are the paper's snooker values.
+struct CushionParams {
+  double mass = 0.1406;             // kg
+  double radius = 0.02625;          // m
+  double cushion_height = 0.03675;  // m, contact height above the cloth (h = 7R/5)
+  double mu_cushion = 0.14;         // ball-cushion sliding friction mu_w
+  double mu_table = 0.212;          // ball-cloth sliding friction mu_s
+  double restitution = 0.98;        // energetic coefficient of restitution e_e, (0, 1]
+  double rigid_speed_limit = 2.5;   // m/s; normal speeds above it are flagged
+
+  // Elevation of the contact normal: sin(theta) = (h - R) / R.
+  double sin_theta() const { return (cushion_height - radius) / radius; }
+  double cos_theta() const;
+
+  // Empty when usable; otherwise one line naming the field and what is wrong.
+  std::string validate() const;
+};
+
+// Snooker defaults with the cushion height kept at 7R/5 of the given radius.
+CushionParams params_for_radius(double radius);
+
+// Ball state in the cushion frame: X along the cushion, Y from the ball into the
+// cushion, Z up. velocity.z must be zero (the ball stays on the cloth).
+struct BallState {
+  Vec3 velocity;  // m/s, centre of the ball
+  Vec3 spin;      // rad/s
+};
+
+// Section 3.1: speed V0 (m/s) at incidence alpha (deg, 0 < alpha < 180, 90 head-on),
+// topspin w_T and sidespin w_S (rad/s; w_T = V0/R is natural roll, w_S > 0 right).
+BallState incoming_state(double speed, double alpha_deg, double topspin, double sidespin);
+
+// The same with the paper's dimensionless spins k_T = w_T R / V0, k_S = w_S R / V0.
+BallState incoming_state_k(double speed, double alpha_deg, double topspin_k,
+                           double sidespin_k, double radius);
+
+// Translational plus rotational kinetic energy (J) of a solid ball.
+double kinetic_energy(const CushionParams& params, const BallState& state);
+
+enum class ImpactMethod {
+  exact,  // adaptive extrapolation integrator with events (default)
+  paper,  // the paper's fixed-step scheme in P_I (section 3.4)
+  table,  // precomputed surrogate over (alpha, k_T, k_S); see impact_table.hpp
+};
+
+enum class ImpactStatus {
+  ok,
+  rigid_limit_exceeded,  // solved, but the normal speed is above rigid_speed_limit
+  invalid_input,         // nothing solved; message names the field
+  step_limit,            // the integrator's work bound was reached; result unusable
+};
+
+const char* to_string(ImpactMethod method);
+const char* to_string(ImpactStatus status);
+// Parses "exact", "paper" or "table"; returns false for anything else.
+bool parse_method(const std::string& name, ImpactMethod* method);
+
+// True when a result's outgoing state can be used (ok or only flagged).
+inline bool usable(ImpactStatus status) {
+  return status == ImpactStatus::ok || status == ImpactStatus::rigid_limit_exceeded;
+}
+
+enum class Contact : unsigned char { cushion, table };
+const char* to_string(Contact contact);
+
+// A change of slip state at one contact.
+struct SlipTransition {
+  Contact contact = Contact::cushion;
+  bool sticking = false;  // true: the slip reached zero and the contact holds
+  double impulse = 0.0;   // N s, cushion normal impulse P_I at the change
+};
+
+// One point of the slip history, for plots such as the paper's figure 12.
+struct TraceSample {
+  double impulse = 0.0;          // N s, P_I
+  double slip_cushion = 0.0;     // m/s, s at I
+  double phi_cushion_deg = 0.0;  // direction of the slip at I from X
+  double slip_table = 0.0;       // m/s, s' at C
+  double phi_table_deg = 0.0;    // direction of the slip at C from X
+  double work = 0.0;             // J, W at I along its normal
+  BallState state;
+};
+
+struct ImpactOptions {
+  ImpactMethod method = ImpactMethod::exact;
+  int paper_steps = 5000;     // paper: N, with dP_I = (1 + e) M V0 sin(alpha) / N
+  double tolerance = 1e-12;   // exact: local error per step, relative to the speed scale
+  int max_steps = 20000;      // exact: work bound on accepted plus rejected steps
+  const ImpactTable* table = nullptr;    // table: the surrogate (required)
+  std::vector<TraceSample>* trace = nullptr;  // optional slip history (exact, paper)
+};
+
+constexpr int kMaxTransitions = 16;
+
+struct ImpactResult {
+  ImpactStatus status = ImpactStatus::invalid_input;
+  std::string message;  // why, when the status is not ok
+  ImpactMethod method_used = ImpactMethod::exact;
+
+  BallState outgoing;              // cushion frame, same units as the input
+  double rebound_speed = 0.0;      // m/s, |(vx, vy)| after the impact
+  double rebound_angle_deg = 0.0;  // from +X like alpha: mirror reflection gives beta = alpha
+  double impulse_compression = 0.0;  // N s, P_I when the normal approach stops (eq. 16c)
+  double impulse_total = 0.0;        // N s, P_I when W = (1 - e^2) W_c (eq. 16b)
+  double work_compression = 0.0;     // J, W_c
+  double work_total = 0.0;           // J, W at the end of the impact
+
+  bool cushion_slipping_at_start = true;
+  bool table_slipping_at_start = true;
+  std::array<SlipTransition, kMaxTransitions> transitions{};
+  int transition_count = 0;
+
+  int rhs_evaluations = 0;  // right-hand side calls: the work the method did
+};
+
+// Resolves one impact. Never throws for bad numbers: invalid input comes back as
+// status invalid_input with a message naming the field.
+ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
+                            const ImpactOptions& options = {});
+
+}  // namespace cueplan::physics

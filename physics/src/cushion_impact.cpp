@@ -1,0 +1,257 @@
+#include "cueplan/physics/cushion_impact.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "impact_methods.hpp"
+
+namespace cueplan::physics {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+std::string describe(const char* field, const char* rule, double value) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field, rule, value);
+  return buf;
+}
+
+bool positive_finite(double x) { return std::isfinite(x) && x > 0.0; }
+
+std::string validate_state(const BallState& in) {
+  const Vec3& v = in.velocity;
+  const Vec3& w = in.spin;
+  if (!std::isfinite(v.x)) return describe("velocity.x", "must be finite (m/s)", v.x);
+  if (!std::isfinite(v.y)) return describe("velocity.y", "must be finite (m/s)", v.y);
+  if (!std::isfinite(w.x)) return describe("spin.x", "must be finite (rad/s)", w.x);
+  if (!std::isfinite(w.y)) return describe("spin.y", "must be finite (rad/s)", w.y);
+  if (!std::isfinite(w.z)) return describe("spin.z", "must be finite (rad/s)", w.z);
+  if (v.z != 0.0) return describe("velocity.z", "must be 0: the ball rolls on the cloth", v.z);
+  if (!(v.y > 0.0))
+    return describe("velocity.y", "must be positive: the ball must move into the cushion",
+                    v.y);
+  return {};
+}
+
+}  // namespace
+
+double CushionParams::cos_theta() const {
+  const double s = sin_theta();
+  return std::sqrt(1.0 - s * s);
+}
+
+std::string CushionParams::validate() const {
+  if (!positive_finite(mass)) return describe("mass", "must be positive and finite (kg)", mass);
+  if (!positive_finite(radius))
+    return describe("radius", "must be positive and finite (m)", radius);
+  if (!std::isfinite(cushion_height) || !(cushion_height > radius) ||
+      !(cushion_height < 2.0 * radius))
+    return describe("cushion_height",
+                    "must lie between radius and 2*radius (m): the cushion touches the ball "
+                    "above its equator",
+                    cushion_height);
+  if (!std::isfinite(mu_cushion) || mu_cushion < 0.0)
+    return describe("mu_cushion", "must be finite and not negative", mu_cushion);
+  if (!std::isfinite(mu_table) || mu_table < 0.0)
+    return describe("mu_table", "must be finite and not negative", mu_table);
+  if (!std::isfinite(restitution) || !(restitution > 0.0) || restitution > 1.0)
+    return describe("restitution", "must lie in (0, 1]", restitution);
+  if (!positive_finite(rigid_speed_limit))
+    return describe("rigid_speed_limit", "must be positive and finite (m/s)",
+                    rigid_speed_limit);
+  const double s = sin_theta();
+  const double c = cos_theta();
+  // The table must keep pushing up: p_C = s - c fIy' > 0 for any |fIy'| <= mu_w.
+  if (!(mu_cushion < s / c))
+    return describe("mu_cushion",
+                    "must be below tan(theta) of the cushion contact, or the cushion lifts "
+                    "the ball off the cloth",
+                    mu_cushion);
+  if (!(detail::worst_normal_deceleration(detail::Geometry::from(*this)) > 0.0))
+    return describe("mu_table",
+                    "is too large together with mu_cushion: friction could stop the cushion "
+                    "from turning the ball round",
+                    mu_table);
+  return {};
+}
+
+CushionParams params_for_radius(double radius) {
+  CushionParams params;
+  params.radius = radius;
+  params.cushion_height = 1.4 * radius;
+  return params;
+}
+
+BallState incoming_state(double speed, double alpha_deg, double topspin, double sidespin) {
+  const double ca = std::cos(alpha_deg * kDegree);
+  const double sa = std::sin(alpha_deg * kDegree);
+  BallState state;
+  state.velocity = {speed * ca, speed * sa, 0.0};
+  state.spin = {-topspin * sa, topspin * ca, sidespin};
+  return state;
+}
+
+BallState incoming_state_k(double speed, double alpha_deg, double topspin_k, double sidespin_k,
+                           double radius) {
+  return incoming_state(speed, alpha_deg, topspin_k * speed / radius,
+                        sidespin_k * speed / radius);
+}
+
+double kinetic_energy(const CushionParams& params, const BallState& state) {
+  const double inertia = 0.4 * params.mass * params.radius * params.radius;
+  return 0.5 * params.mass * dot(state.velocity, state.velocity) +
+         0.5 * inertia * dot(state.spin, state.spin);
+}
+
+const char* to_string(ImpactMethod method) {
+  switch (method) {
+    case ImpactMethod::exact: return "exact";
+    case ImpactMethod::paper: return "paper";
+    case ImpactMethod::table: return "table";
+  }
+  return "unknown";
+}
+
+const char* to_string(ImpactStatus status) {
+  switch (status) {
+    case ImpactStatus::ok: return "ok";
+    case ImpactStatus::rigid_limit_exceeded: return "rigid_limit_exceeded";
+    case ImpactStatus::invalid_input: return "invalid_input";
+    case ImpactStatus::step_limit: return "step_limit";
+  }
+  return "unknown";
+}
+
+const char* to_string(Contact contact) {
+  return contact == Contact::cushion ? "cushion" : "table";
+}
+
+bool parse_method(const std::string& name, ImpactMethod* method) {
+  for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::paper, ImpactMethod::table}) {
+    if (name == to_string(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+namespace detail {
+
+TraceSample scaled_sample(const Geometry& g, const Scaled& q, double impulse, double work) {
+  const Slips sl = slips_of(g, q);
+  TraceSample t;
+  t.impulse = impulse;
+  t.slip_cushion = std::hypot(sl.ix, sl.iy);
+  t.phi_cushion_deg = std::atan2(sl.iy, sl.ix) / kDegree;
+  t.slip_table = std::hypot(sl.cx, sl.cy);
+  t.phi_table_deg = std::atan2(sl.cy, sl.cx) / kDegree;
+  t.work = work;
+  t.state.velocity = {q.ux, q.uy, 0.0};
+  t.state.spin = {q.ox, q.oy, q.oz};
+  return t;
+}
+
+}  // namespace detail
+
+namespace {
+
+// Physical units from scaled ones: V for velocities, V/R for spins, M V for
+// impulses and M V^2 for work.
+ImpactResult to_result(const CushionParams& params, const detail::ScaledOutcome& out,
+                       double scale, std::vector<TraceSample>* trace, size_t trace_from) {
+  const double spin_unit = scale / params.radius;
+  const double impulse_unit = params.mass * scale;
+  const double work_unit = params.mass * scale * scale;
+  ImpactResult r;
+  r.status = out.status;
+  if (out.failure) r.message = out.failure;
+  r.outgoing.velocity = {out.outgoing.ux * scale, out.outgoing.uy * scale, 0.0};
+  r.outgoing.spin = {out.outgoing.ox * spin_unit, out.outgoing.oy * spin_unit,
+                     out.outgoing.oz * spin_unit};
+  r.rebound_speed = std::hypot(r.outgoing.velocity.x, r.outgoing.velocity.y);
+  r.rebound_angle_deg = std::atan2(-r.outgoing.velocity.y, r.outgoing.velocity.x) / kDegree;
+  r.impulse_compression = out.impulse_compression * impulse_unit;
+  r.impulse_total = out.impulse_total * impulse_unit;
+  r.work_compression = out.work_compression * work_unit;
+  r.work_total = out.work_total * work_unit;
+  r.cushion_slipping_at_start = out.cushion_slipping_at_start;
+  r.table_slipping_at_start = out.table_slipping_at_start;
+  r.transition_count = out.transition_count;
+  for (int i = 0; i < out.transition_count; ++i) {
+    r.transitions[i] = out.transitions[i];
+    r.transitions[i].impulse *= impulse_unit;
+  }
+  r.rhs_evaluations = out.rhs_evaluations;
+  if (trace) {
+    for (size_t i = trace_from; i < trace->size(); ++i) {
+      TraceSample& t = (*trace)[i];
+      t.impulse *= impulse_unit;
+      t.slip_cushion *= scale;
+      t.slip_table *= scale;
+      t.work *= work_unit;
+      t.state.velocity = scale * t.state.velocity;
+      t.state.spin = spin_unit * t.state.spin;
+    }
+  }
+  return r;
+}
+
+ImpactResult invalid(std::string why) {
+  ImpactResult r;
+  r.status = ImpactStatus::invalid_input;
+  r.message = std::move(why);
+  return r;
+}
+
+}  // namespace
+
+ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
+                            const ImpactOptions& options) {
+  if (std::string why = params.validate(); !why.empty()) return invalid(std::move(why));
+  if (std::string why = validate_state(incoming); !why.empty()) return invalid(std::move(why));
+
+  if (options.method == ImpactMethod::table) {
+    if (options.table == nullptr) return invalid("method table needs a built impact table");
+    ImpactResult r;
+    if (options.table->resolve(params, incoming, &r)) return r;
+    // Outside the table's domain or parameters: fall through to the exact method.
+  }
+  if (options.method == ImpactMethod::paper && options.paper_steps < 1)
+    return invalid(describe("paper_steps", "must be at least 1", options.paper_steps));
+  if (options.method == ImpactMethod::exact &&
+      (!std::isfinite(options.tolerance) || !(options.tolerance >= 1e-15) ||
+       !(options.tolerance <= 1e-2)))
+    return invalid(describe("tolerance", "must lie in [1e-15, 1e-2]", options.tolerance));
+
+  detail::ScaledImpact impact;
+  impact.geometry = detail::Geometry::from(params);
+  impact.restitution = params.restitution;
+  impact.speed_scale = std::hypot(incoming.velocity.x, incoming.velocity.y);
+  const double v = impact.speed_scale;
+  const double o = params.radius / v;
+  impact.incoming = {incoming.velocity.x / v, incoming.velocity.y / v, incoming.spin.x * o,
+                     incoming.spin.y * o, incoming.spin.z * o};
+
+  const size_t trace_from = options.trace ? options.trace->size() : 0;
+  detail::ScaledOutcome out;
+  ImpactMethod used = options.method == ImpactMethod::paper ? ImpactMethod::paper
+                                                            : ImpactMethod::exact;
+  if (used == ImpactMethod::paper)
+    out = detail::solve_paper(impact, options.paper_steps, options.trace);
+  else
+    out = detail::solve_exact(impact, options.tolerance, options.max_steps, options.trace);
+
+  ImpactResult r = to_result(params, out, v, options.trace, trace_from);
+  r.method_used = used;
+  if (r.status == ImpactStatus::ok && incoming.velocity.y > params.rigid_speed_limit) {
+    r.status = ImpactStatus::rigid_limit_exceeded;
+    r.message = describe("velocity.y", "is above the rigid-cushion limit (m/s)",
+                         incoming.velocity.y);
+  }
+  return r;
+}
+
+}  // namespace cueplan::physics

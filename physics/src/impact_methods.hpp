@@ -1,0 +1,47 @@
+// The three ways of resolving an impact, behind resolve_impact (private header).
+#pragma once
+
+#include "cueplan/physics/cushion_impact.hpp"
+#include "impact_model.hpp"
+
+namespace cueplan::physics::detail {
+
+// An impact posed in scaled units (see impact_model.hpp).
+struct ScaledImpact {
+  Geometry geometry;
+  double restitution = 1.0;
+  Scaled incoming;      // u_y > 0
+  double speed_scale;   // m/s, V
+};
+
+// What a method finds, in scaled units; resolve_impact turns it into an ImpactResult.
+struct ScaledOutcome {
+  ImpactStatus status = ImpactStatus::ok;
+  const char* failure = nullptr;  // set with step_limit
+  Scaled outgoing;
+  double impulse_compression = 0.0;
+  double impulse_total = 0.0;
+  double work_compression = 0.0;
+  double work_total = 0.0;
+  bool cushion_slipping_at_start = true;
+  bool table_slipping_at_start = true;
+  std::array<SlipTransition, kMaxTransitions> transitions{};  // impulses scaled
+  int transition_count = 0;
+  int rhs_evaluations = 0;
+
+  void add_transition(Contact contact, bool sticking, double impulse) {
+    if (transition_count < kMaxTransitions)
+      transitions[transition_count++] = {contact, sticking, impulse};
+  }
+};
+
+// Trace samples are recorded in scaled units and converted by the caller.
+ScaledOutcome solve_paper(const ScaledImpact& impact, int steps,
+                          std::vector<TraceSample>* trace);
+ScaledOutcome solve_exact(const ScaledImpact& impact, double tolerance, int max_steps,
+                          std::vector<TraceSample>* trace);
+
+// Fills a trace sample (scaled) from a state and the work so far.
+TraceSample scaled_sample(const Geometry& g, const Scaled& q, double impulse, double work);
+
+}  // namespace cueplan::physics::detail
