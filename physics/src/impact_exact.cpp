@@ -51,7 +51,11 @@ class ExactIntegrator {
     const Scaled& q = impact.incoming;
     t_ = -q.uy;
     y_ = {q.ux, q.ox, q.oy, q.oz, 0.0, 0.0};
-    zero_slip_ = tol_;
+    // Event thresholds sit well above the integration noise (about tol per step)
+    // and well below what would change the outcome at the tolerance.
+    zero_slip_ = 100.0 * tol_;
+    young_slip_ = 1e5 * tol_;
+    landing_ = std::max(1e-3 * tol_, 1e-15);
     tiny_ = 1e-3 * tol_;
   }
 
@@ -60,10 +64,28 @@ class ExactIntegrator {
  private:
   Scaled scaled(double t, const State& y) const { return {y[kUx], -t, y[kOx], y[kOy], y[kOz]}; }
 
+  // Friction at (t, y) for modes m. A slip growing from zero (young) has no direction
+  // of its own worth trusting: below young_slip_ its direction is the quasi-static
+  // one, against the friction that would keep that contact stuck in the current
+  // state - the direction in which a slip leaves zero.
   Friction friction(double t, const State& y, Modes m) const {
     const Slips sl = slips_of(g_, scaled(t, y));
-    return friction_for(g_, m, direction_of(sl.ix, sl.iy, seed_i_, tiny_),
-                        direction_of(sl.cx, sl.cy, seed_c_, tiny_));
+    Direction di = direction_of(sl.ix, sl.iy, seed_i_, tiny_);
+    Direction dc = direction_of(sl.cx, sl.cy, seed_c_, tiny_);
+    const bool young_i = !m.stick_i && young_i_;
+    const bool young_c = !m.stick_c && young_c_;
+    if (young_i || young_c) {
+      const Friction held = friction_for(g_, {m.stick_i || young_i, m.stick_c || young_c}, di, dc);
+      if (young_i) di = against(held.ix, held.iy, di);
+      if (young_c) dc = against(held.cx, held.cy, dc);
+    }
+    return friction_for(g_, m, di, dc);
+  }
+
+  static Direction against(double fx, double fy, Direction fallback) {
+    const double n = std::hypot(fx, fy);
+    if (!(n > 0.0)) return fallback;
+    return {-fx / n, -fy / n};
   }
 
   void rhs(double t, const State& y, State& dy) {
@@ -78,8 +100,12 @@ class ExactIntegrator {
     dy[kW] = -g_.c * t * dp_dt;  // c u_y dp/dt with u_y = -t
   }
 
+  struct StepReport {
+    int column = 0;       // the column the step was accepted at
+    double next_h = 0.0;  // suggested size of the next step (or of the retry)
+  };
   bool extrapolate(double t, const State& y, const State& f0, double h, State& result,
-                   int* columns);
+                   StepReport* report);
   void settle_modes(bool force_slip_i, bool force_slip_c);
   double stick_margin(double t, const State& y) const;
   bool locate_stick_break(double h, State& result, double* h_root);
@@ -106,19 +132,35 @@ class ExactIntegrator {
   State y_{};
   Modes modes_;
   Direction seed_i_, seed_c_;
+  bool young_i_ = false, young_c_ = false;  // slipping, grown from zero, still tiny
+  double young_slip_ = 0.0;  // a young slip this large takes its own direction
   double zero_slip_ = 0.0;  // a slip this small has reached zero
   double tiny_ = 0.0;       // a slip this small has no direction of its own
+  double landing_ = 0.0;    // an event this close in t has been reached
   int steps_ = 0;
+  int target_column_ = 4;  // column at which steps are meant to converge
+  // Fraction of the predicted distance to a slip zero that a landing step covers:
+  // 1 until a landing step fails to converge at the zero (where the slip direction
+  // is not smooth), then 0.9, so the zero is approached ten times closer per step.
+  double approach_ = 1.0;
   int mode_changes_ = 0;
 };
 
-// One extrapolated step of size h from (t, y); f0 = f(t, y). Returns false when the
-// extrapolation did not reach the tolerance within kMaxColumns columns.
+// One extrapolated step of size h from (t, y); f0 = f(t, y). Columns are computed up
+// to one past the target column; the step is accepted at the first column whose
+// error estimate meets the tolerance. Order and next step size follow the usual
+// work-per-unit-step rule of extrapolation codes (Hairer & Wanner's ODEX): the
+// column that would cover the most ground per evaluation becomes the next target.
 bool ExactIntegrator::extrapolate(double t, const State& y, const State& f0, double h,
-                                  State& result, int* columns) {
+                                  State& result, StepReport* report) {
+  // Cumulative right-hand side calls to complete column k (substeps 2(k+1)), with f0.
+  static constexpr std::array<double, kMaxColumns> kWork = {2, 5, 10, 17, 26, 37, 50, 65};
+  const double length = std::abs(h);
+  const int last = std::min(target_column_ + 1, kMaxColumns - 1);
   std::array<State, kMaxColumns> prev{}, cur{};
-  double err = 0.0;
-  for (int k = 0; k < kMaxColumns; ++k) {
+  std::array<double, kMaxColumns> h_opt{};
+  auto substeps = [](int k) { return 2.0 * (k + 1); };
+  for (int k = 0; k <= last; ++k) {
     const int n = 2 * (k + 1);
     const double hs = h / n;
     // Modified midpoint rule with n substeps.
@@ -141,18 +183,49 @@ bool ExactIntegrator::extrapolate(double t, const State& y, const State& f0, dou
         cur[j][i] = cur[j - 1][i] + (cur[j - 1][i] - prev[j - 1][i]) / denom;
     }
     if (k >= 1) {
-      err = 0.0;
-      for (int i = 0; i < kDim; ++i) err = std::max(err, std::abs(cur[k][i] - cur[k - 1][i]));
-      if (!std::isfinite(err)) return false;
-      if (err <= tol_) {
+      double err = 0.0, size = 1.0;
+      for (int i = 0; i < kDim; ++i) {
+        err = std::max(err, std::abs(cur[k][i] - cur[k - 1][i]));
+        size = std::max(size, std::abs(cur[k][i]));
+      }
+      if (!std::isfinite(err)) {
+        report->next_h = 0.25 * length;
+        return false;
+      }
+      // Rounding bounds what the estimate can show: never ask for less.
+      const double tol = std::max(tol_, 4e-16 * size);
+      h_opt[k] = length * 0.94 * std::pow(0.65 * tol / std::max(err, 1e-300), 1.0 / (2 * k + 1));
+      if (err <= tol) {
         result = cur[k];
-        *columns = k + 1;
+        report->column = k;
+        int next = k;
+        if (k < target_column_) {
+          // Converged sooner than planned: the step could have been longer.
+          report->next_h = std::max(h_opt[k], 2.0 * length);
+          return true;
+        }
+        if (k >= 2 && kWork[k - 1] / h_opt[k - 1] < 0.9 * kWork[k] / h_opt[k]) {
+          next = k - 1;
+        } else if (k == target_column_ && k + 1 < kMaxColumns - 1 &&
+                   kWork[k] / h_opt[k] < 0.9 * kWork[k - 1] / h_opt[k - 1]) {
+          next = k + 1;
+        }
+        report->next_h = next == k + 1 ? h_opt[k] * kWork[k + 1] / kWork[k] : h_opt[next];
+        target_column_ = std::clamp(next, 2, kMaxColumns - 2);
         return true;
+      }
+      // Give up early when the error cannot plausibly fall to the tolerance by the
+      // last column: one more column gains about (n_{k+1} / n_0)^2.
+      if (k == target_column_ && err > tol * std::pow(substeps(k + 1) / substeps(0), 2)) {
+        report->next_h = std::clamp(h_opt[k], 0.05 * length, 0.7 * length);
+        if (k >= 2 && kWork[k - 1] / h_opt[k - 1] < kWork[k] / h_opt[k])
+          target_column_ = std::max(2, k - 1);
+        return false;
       }
     }
     std::swap(prev, cur);
   }
-  *columns = kMaxColumns;
+  report->next_h = std::clamp(h_opt[last], 0.05 * length, 0.7 * length);
   return false;
 }
 
@@ -195,6 +268,9 @@ void ExactIntegrator::settle_modes(bool force_slip_i, bool force_slip_c) {
       break;
     }
   }
+  approach_ = 1.0;
+  young_i_ = zero_i && !chosen.stick_i;
+  young_c_ = zero_c && !chosen.stick_c;
   if (chosen.stick_i != modes_.stick_i)
     out_->add_transition(Contact::cushion, chosen.stick_i, y_[kP]);
   if (chosen.stick_c != modes_.stick_c)
@@ -215,9 +291,9 @@ bool ExactIntegrator::locate_stick_break(double h, State& result, double* h_root
     double mid = (lo * m_hi - hi * m_lo) / (m_hi - m_lo);
     if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
     State trial;
-    int columns = 0;
+    StepReport report;
     ++steps_;
-    if (!extrapolate(t_, y_, f0, mid, trial, &columns)) {
+    if (!extrapolate(t_, y_, f0, mid, trial, &report)) {
       hi = mid;  // too long a step to converge: look nearer
       continue;
     }
@@ -234,7 +310,7 @@ bool ExactIntegrator::locate_stick_break(double h, State& result, double* h_root
       if (side == -1) m_lo *= 0.5;
       side = -1;
     }
-    if (std::abs(m) <= 1e-3 * tol_ || hi - lo <= 1e-3 * tol_) break;
+    if (std::abs(m) <= 1e-3 * tol_ || hi - lo <= landing_) break;
   }
   // Land on the last point where the stick still held (within the tolerance).
   if (lo == 0.0) return false;
@@ -278,7 +354,7 @@ void ExactIntegrator::run() {
       const double dw = y_[kW] - work_end;
       const double disc = t_ * t_ + 2.0 * dw / (g_.c * q);
       const double land = disc > 0.0 ? -t_ + std::sqrt(disc) : -t_;
-      if (std::abs(land) <= 1e-3 * tol_ * std::max(1.0, t_)) break;  // landed
+      if (std::abs(land) <= landing_) break;  // landed
       if (land <= step) {
         step = land;
         target = Target::impact_end;
@@ -291,7 +367,7 @@ void ExactIntegrator::run() {
       if (mag <= zero_slip_) return;
       const double rate = (sl.x * dsx + sl.y * dsy) / mag;
       if (rate >= 0.0) return;
-      const double when = mag / -rate;
+      const double when = approach_ * mag / -rate;
       if (when < step) {
         step = when;
         target = which;
@@ -307,22 +383,25 @@ void ExactIntegrator::run() {
     }
 
     State next;
-    int columns = 0;
+    StepReport report;
     ++steps_;
-    if (!extrapolate(t_, y_, f0, step, next, &columns)) {
-      h = 0.3 * step;
+    if (!extrapolate(t_, y_, f0, step, next, &report)) {
+      if ((target == Target::slip_zero_i || target == Target::slip_zero_c) && approach_ == 1.0) {
+        approach_ = 0.9;
+      } else {
+        h = report.next_h;
+      }
       continue;
     }
 
-    // A slip that reversed has been stepped through: take a shorter step.
+    // A slip that reversed has been stepped through: take a shorter step, so that
+    // it is landed on instead.
     const ContactSlip si0 = slip_i(t_, y_), sc0 = slip_c(t_, y_);
     const ContactSlip si1 = slip_i(t_ + step, next), sc1 = slip_c(t_ + step, next);
-    const bool through_i = !modes_.stick_i && si0.magnitude() > zero_slip_ &&
-                           si0.x * si1.x + si0.y * si1.y < 0.0;
-    const bool through_c = !modes_.stick_c && sc0.magnitude() > zero_slip_ &&
-                           sc0.x * sc1.x + sc0.y * sc1.y < 0.0;
-    if ((through_i && target == Target::slip_zero_i) ||
-        (through_c && target == Target::slip_zero_c)) {
+    const bool moving_i = !modes_.stick_i && si0.magnitude() > zero_slip_;
+    const bool moving_c = !modes_.stick_c && sc0.magnitude() > zero_slip_;
+    if ((moving_i && si0.x * si1.x + si0.y * si1.y < 0.0) ||
+        (moving_c && sc0.x * sc1.x + sc0.y * sc1.y < 0.0)) {
       h = 0.5 * step;
       continue;
     }
@@ -346,11 +425,13 @@ void ExactIntegrator::run() {
     t_ = (target == Target::compression_end) ? 0.0 : t_ + step;
     y_ = next;
     record();
+    if (young_i_ && slip_i(t_, y_).magnitude() > young_slip_) young_i_ = false;
+    if (young_c_ && slip_c(t_, y_).magnitude() > young_slip_) young_c_ = false;
 
-    // Next adaptive step size from how many columns the extrapolation needed.
-    h = columns <= 4 ? 4.0 * step : (columns <= 6 ? 1.5 * step : 0.7 * step);
-    if (target != Target::none && target != Target::compression_end)
-      h = std::max(h, std::abs(step));
+    // Next adaptive step: as the extrapolation suggests, but after a step cut short
+    // by an event no shorter than the size that was planned.
+    h = (target == Target::none) ? std::min(report.next_h, 10.0 * std::abs(step))
+                                 : std::max(h, std::min(report.next_h, 10.0 * std::abs(step)));
 
     if (broke) {
       // The contact nearest its cone's edge is the one whose stick breaks.
@@ -359,8 +440,11 @@ void ExactIntegrator::run() {
       const double mc = modes_.stick_c ? stick_margin_c(g_, f) : INFINITY;
       settle_modes(mi <= mc, mc < mi);
     }
-    if ((target == Target::slip_zero_i && slip_i(t_, y_).magnitude() <= zero_slip_) ||
-        (target == Target::slip_zero_c && slip_c(t_, y_).magnitude() <= zero_slip_))
+    // Every slip that reached zero in this step, targeted or not (two events can
+    // coincide: while the cushion sticks, the table slip vanishes exactly at the
+    // end of compression).
+    if ((moving_i && slip_i(t_, y_).magnitude() <= zero_slip_) ||
+        (moving_c && slip_c(t_, y_).magnitude() <= zero_slip_))
       settle_modes(false, false);
     if (mode_changes_ > max_mode_changes) break;
 

@@ -1,0 +1,513 @@
+// Tests of the cushion impact against facts that do not come from the code under
+// test: analytic limits, a closed-form head-on solution, an independent Runge-Kutta
+// reference, symmetries, energy, scale invariance and the paper's stated results.
+#include "cueplan/physics/cushion_impact.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace cueplan::physics {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+ImpactResult solve(const CushionParams& p, double v0, double alpha, double kt, double ks,
+                   ImpactMethod method = ImpactMethod::exact, int steps = 5000,
+                   double tolerance = 1e-12) {
+  ImpactOptions o;
+  o.method = method;
+  o.paper_steps = steps;
+  o.tolerance = tolerance;
+  return resolve_impact(p, incoming_state_k(v0, alpha, kt, ks, p.radius), o);
+}
+
+// Largest difference of two outgoing states, in units of the incoming speed (spins
+// as R w).
+double state_difference(const CushionParams& p, const ImpactResult& a, const ImpactResult& b,
+                        double v0) {
+  const Vec3 dv = a.outgoing.velocity - b.outgoing.velocity;
+  const Vec3 dw = a.outgoing.spin - b.outgoing.spin;
+  double m = std::max({std::abs(dv.x), std::abs(dv.y), p.radius * std::abs(dw.x),
+                       p.radius * std::abs(dw.y), p.radius * std::abs(dw.z)});
+  return m / v0;
+}
+
+// ---------------------------------------------------------------------------
+// Closed-form head-on impact. At alpha = 90 deg with no sidespin every slip and every
+// friction lies along Y, so between events the rates are constant: u_y and o_x are
+// linear and W quadratic in the impulse, and each event (a slip reaching zero, the
+// end of compression, the end of the impact) is a root of a polynomial of degree
+// at most two. Written from eqs. (3)-(16) independently of physics/src.
+struct HeadOn {
+  double uy, ox, p = 0.0, w = 0.0;
+};
+
+double head_on_rebound(const CushionParams& prm, double kt) {
+  const double s = prm.sin_theta(), c = prm.cos_theta();
+  const double mw = prm.mu_cushion, ms = prm.mu_table, e = prm.restitution;
+  const double b = s * s + 2.5, d = 2.5 - s;
+  HeadOn st{1.0, -kt};
+  auto slip_i = [&](const HeadOn& h) { return -h.uy * s + h.ox; };
+  auto slip_c = [&](const HeadOn& h) { return h.uy + h.ox; };
+  auto sign = [](double x) { return x > 0 ? 1.0 : -1.0; };
+  // Friction (fIy, fCy) per unit P_I for a mode: stick flags and slip signs.
+  auto friction = [&](bool stick_i, bool stick_c, double si, double sc, double* fi,
+                      double* fc) {
+    if (!stick_i && !stick_c) {
+      *fi = -mw * si;
+      *fc = -ms * (s - c * *fi) * sc;
+    } else if (stick_i && !stick_c) {
+      *fi = (-s * c + d * ms * s * sc) / (b + d * ms * c * sc);
+      *fc = -ms * (s - c * *fi) * sc;
+    } else if (!stick_i && stick_c) {
+      *fi = -mw * si;
+      *fc = (c - d * *fi) / 3.5;
+    } else {
+      const double det = 3.5 * b - d * d;
+      *fi = (-3.5 * s * c - d * c) / det;
+      *fc = (b * c + d * s * c) / det;
+    }
+  };
+  auto holds = [&](bool stick_i, bool stick_c, double si, double sc) {
+    double fi, fc;
+    friction(stick_i, stick_c, si, sc, &fi, &fc);
+    return (!stick_i || std::abs(fi) <= mw) && (!stick_c || std::abs(fc) <= ms * (s - c * fi));
+  };
+  bool stick_i = false, stick_c = false;
+  double si = sign(slip_i(st)), sc = sign(slip_c(st));
+  bool compressing = true;
+  double w_end = 0.0;
+  // Chooses modes at a point where some slips are zero: stick where it holds; a
+  // contact that cannot stick slips in the direction its drive pushes it.
+  auto settle = [&](bool zero_i, bool zero_c) {
+    const bool cands[4][2] = {{zero_i, zero_c}, {zero_i, false}, {false, zero_c}, {false, false}};
+    for (auto& m : cands) {
+      // Slip signs for zero-slip contacts that slip: against the stick friction.
+      double fi, fc;
+      friction(zero_i, zero_c, si, sc, &fi, &fc);
+      const double ti = zero_i && !m[0] ? -sign(fi) : si;
+      const double tc = zero_c && !m[1] ? -sign(fc) : sc;
+      if (holds(m[0], m[1], ti, tc)) {
+        stick_i = m[0];
+        stick_c = m[1];
+        si = ti;
+        sc = tc;
+        return;
+      }
+    }
+  };
+  for (int event = 0; event < 64; ++event) {
+    double fi, fc;
+    friction(stick_i, stick_c, si, sc, &fi, &fc);
+    const double duy = -c - s * fi + fc, dox = 2.5 * (fi + fc);
+    // Impulse to each event from the current point (inf when none ahead).
+    double to_i = INFINITY, to_c = INFINITY, to_end = INFINITY;
+    if (!stick_i) {
+      const double rate = -duy * s + dox, v = slip_i(st);
+      if (v * rate < 0) to_i = -v / rate;
+    }
+    if (!stick_c) {
+      const double rate = duy + dox, v = slip_c(st);
+      if (v * rate < 0) to_c = -v / rate;
+    }
+    if (compressing) {
+      to_end = -st.uy / duy;
+    } else {
+      // W + c (uy dp + duy dp^2 / 2) = w_end
+      const double qa = 0.5 * c * duy, qb = c * st.uy, qc = st.w - w_end;
+      to_end = (-qb - std::sqrt(qb * qb - 4 * qa * qc)) / (2 * qa);
+    }
+    const double dp = std::min({to_i, to_c, to_end});
+    st.w += c * (st.uy * dp + 0.5 * duy * dp * dp);
+    st.uy += duy * dp;
+    st.ox += dox * dp;
+    st.p += dp;
+    // Events closer than rounding happen together.
+    auto at = [&](double when) { return std::abs(when - dp) <= 1e-12 * (dp + 1e-300); };
+    if (at(to_end)) {
+      if (!compressing) return -st.uy;
+      compressing = false;
+      st.uy = 0.0;
+      w_end = (1 - e * e) * st.w;
+    }
+    if (at(to_i) || at(to_c)) settle(stick_i || at(to_i), stick_c || at(to_c));
+  }
+  return NAN;
+}
+
+// ---------------------------------------------------------------------------
+// Independent oblique reference: classical fourth-order Runge-Kutta with many fixed
+// steps in t = -u_y on the slip-only Coulomb equations (eq. 14), the impact end found
+// by bisection inside the last step. Valid while neither slip passes through zero.
+struct Reference {
+  double ux, uy, ox, oy, oz;
+  bool valid = true;
+};
+
+Reference runge_kutta_reference(const CushionParams& prm, const BallState& in, int steps) {
+  const double s = prm.sin_theta(), c = prm.cos_theta();
+  const double mw = prm.mu_cushion, ms = prm.mu_table, e = prm.restitution;
+  const double v0 = std::hypot(in.velocity.x, in.velocity.y);
+  const double r = prm.radius / v0;
+  using Y = std::array<double, 5>;  // ux, ox, oy, oz, W (uy = -t)
+  double min_slip = INFINITY;
+  auto f = [&](double t, const Y& y) {
+    const double uy = -t;
+    const double xi = y[0] + y[2] * s - y[3] * c, yi = -uy * s + y[1];
+    const double xc = y[0] - y[2], yc = uy + y[1];
+    const double si = std::hypot(xi, yi), sc = std::hypot(xc, yc);
+    min_slip = std::min({min_slip, si, sc});
+    const double cp = xi / si, sp = yi / si, cq = xc / sc, sq = yc / sc;
+    const double pc = s + mw * sp * c;
+    const double dux = -(mw * cp + ms * cq * pc);
+    const double duy = -(c - mw * s * sp + ms * sq * pc);
+    const double dox = -2.5 * (mw * sp + ms * sq * pc);
+    const double doy = -2.5 * (mw * cp * s - ms * cq * pc);
+    const double doz = 2.5 * mw * cp * c;
+    const double dpdt = -1.0 / duy;
+    return Y{dux * dpdt, dox * dpdt, doy * dpdt, doz * dpdt, c * uy * dpdt};
+  };
+  auto rk4 = [&](double t, const Y& y, double h) {
+    auto add = [](const Y& a, const Y& b, double k) {
+      Y o;
+      for (int i = 0; i < 5; ++i) o[i] = a[i] + k * b[i];
+      return o;
+    };
+    const Y k1 = f(t, y), k2 = f(t + h / 2, add(y, k1, h / 2)), k3 = f(t + h / 2, add(y, k2, h / 2)),
+            k4 = f(t + h, add(y, k3, h));
+    Y o;
+    for (int i = 0; i < 5; ++i) o[i] = y[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    return o;
+  };
+  double t = -in.velocity.y / v0;
+  Y y{in.velocity.x / v0, in.spin.x * r, in.spin.y * r, in.spin.z * r, 0.0};
+  const double h = -t / steps;
+  for (int i = 0; i < steps; ++i) y = rk4(t + i * h, y, h);
+  t = 0.0;
+  const double w_end = (1 - e * e) * y[4];
+  for (int guard = 0; guard < 100 * steps; ++guard) {
+    const Y next = rk4(t, y, h);
+    if (next[4] <= w_end) {
+      double lo = 0, hi = h;
+      for (int it = 0; it < 200 && hi - lo > 1e-17; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (rk4(t, y, mid)[4] > w_end ? lo : hi) = mid;
+      }
+      y = rk4(t, y, 0.5 * (lo + hi));
+      t += 0.5 * (lo + hi);
+      break;
+    }
+    y = next;
+    t += h;
+  }
+  Reference ref{y[0] * v0, -t * v0, y[1] / r, y[2] / r, y[3] / r};
+  ref.valid = min_slip > 1e-3;
+  return ref;
+}
+
+// ---------------------------------------------------------------------------
+
+TEST(CushionImpact, FrictionlessImpactReflects) {
+  CushionParams p;
+  p.mu_cushion = 0.0;
+  p.mu_table = 0.0;
+  for (double e : {1.0, 0.98, 0.5}) {
+    p.restitution = e;
+    for (double alpha : {5.0, 45.0, 90.0, 150.0}) {
+      const ImpactResult r = solve(p, 1.3, alpha, 2.0, -1.5);
+      ASSERT_EQ(r.status, ImpactStatus::ok) << r.message;
+      const BallState in = incoming_state_k(1.3, alpha, 2.0, -1.5, p.radius);
+      EXPECT_NEAR(r.outgoing.velocity.y, -e * in.velocity.y, 1e-12);
+      EXPECT_NEAR(r.outgoing.velocity.x, in.velocity.x, 1e-12);
+      EXPECT_NEAR(r.outgoing.spin.x, in.spin.x, 1e-9);
+      EXPECT_NEAR(r.outgoing.spin.y, in.spin.y, 1e-9);
+      EXPECT_NEAR(r.outgoing.spin.z, in.spin.z, 1e-9);
+      // The normal impulse acts along the inclined contact normal: its Y part is
+      // P_I cos(theta) = (1 + e) M vy.
+      EXPECT_NEAR(r.impulse_total * p.cos_theta(), (1 + e) * p.mass * in.velocity.y, 1e-12);
+    }
+  }
+}
+
+TEST(CushionImpact, HeadOnMatchesClosedFormWithStickAndSlip) {
+  CushionParams p;
+  int with_stick = 0;
+  for (double kt = -3.0; kt <= 3.0001; kt += 0.125) {
+    const double expected = head_on_rebound(p, kt);
+    const ImpactResult r = solve(p, 1.0, 90.0, kt, 0.0);
+    ASSERT_EQ(r.status, ImpactStatus::ok) << r.message;
+    EXPECT_NEAR(r.rebound_speed, expected, 1e-10) << "k_T = " << kt;
+    EXPECT_NEAR(r.rebound_angle_deg, 90.0, 1e-9) << "k_T = " << kt;
+    for (int i = 0; i < r.transition_count; ++i) with_stick += r.transitions[i].sticking;
+  }
+  // The sweep must exercise stick at a contact, or it proves little about events.
+  EXPECT_GT(with_stick, 0);
+}
+
+TEST(CushionImpact, HeadOnTopspinTwoReboundsAtRestitutionTimesSpeed) {
+  // With k_T = 2 neither slip changes direction, u_y is linear in P_I and the
+  // energetic restitution gives exactly |vy_out| = e V0; the paper's figure 9
+  // states the rebound "reaches the incident speed" there.
+  CushionParams p;
+  const ImpactResult r = solve(p, 1.0, 90.0, 2.0, 0.0);
+  EXPECT_NEAR(r.rebound_speed, p.restitution, 1e-12);
+}
+
+TEST(CushionImpact, ExactMatchesIndependentRungeKuttaReference) {
+  CushionParams p;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> alpha(5.0, 175.0), k(-3.0, 3.0);
+  int compared = 0;
+  double worst = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    const double a = alpha(rng), kt = k(rng), ks = k(rng);
+    const BallState in = incoming_state_k(1.0, a, kt, ks, p.radius);
+    const Reference ref = runge_kutta_reference(p, in, 4000);
+    if (!ref.valid) continue;  // a slip passes through zero: RK4 would not resolve it
+    const ImpactResult r = solve(p, 1.0, a, kt, ks);
+    ASSERT_EQ(r.status, ImpactStatus::ok);
+    const double diff = std::max({std::abs(r.outgoing.velocity.x - ref.ux),
+                                  std::abs(r.outgoing.velocity.y - ref.uy),
+                                  p.radius * std::abs(r.outgoing.spin.x - ref.ox),
+                                  p.radius * std::abs(r.outgoing.spin.y - ref.oy),
+                                  p.radius * std::abs(r.outgoing.spin.z - ref.oz)});
+    worst = std::max(worst, diff);
+    EXPECT_LT(diff, 1e-9) << "alpha " << a << " k_T " << kt << " k_S " << ks;
+    ++compared;
+  }
+  EXPECT_GE(compared, 30);
+  RecordProperty("worst_difference", std::to_string(worst));
+}
+
+TEST(CushionImpact, DefaultToleranceWithinOneInABillionOfConvergedRun) {
+  // The domain of the target: alpha in (0, 180), |k_T|, |k_S| <= 3, V0 up to 5 m/s.
+  CushionParams p;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> alpha(0.01, 179.99), k(-3.0, 3.0), v(0.01, 5.0);
+  double worst = 0.0;
+  for (int i = 0; i < 1500; ++i) {
+    const double v0 = v(rng), a = alpha(rng), kt = k(rng), ks = k(rng);
+    const ImpactResult r = solve(p, v0, a, kt, ks);
+    const ImpactResult ref = solve(p, v0, a, kt, ks, ImpactMethod::exact, 0, 1e-14);
+    ASSERT_TRUE(usable(r.status)) << r.message;
+    ASSERT_TRUE(usable(ref.status)) << ref.message;
+    const double diff = state_difference(p, r, ref, v0);
+    worst = std::max(worst, diff);
+    ASSERT_LT(diff, 1e-9) << "V0 " << v0 << " alpha " << a << " k_T " << kt << " k_S " << ks;
+  }
+  RecordProperty("worst_difference", std::to_string(worst));
+}
+
+TEST(CushionImpact, MirrorSymmetryOfSidespin) {
+  CushionParams p;
+  for (double alpha : {10.0, 37.0, 60.0, 89.0}) {
+    for (double kt : {-1.0, 0.0, 1.0, 2.5}) {
+      for (double ks : {-2.0, 0.0, 0.7, 3.0}) {
+        const ImpactResult a = solve(p, 1.0, alpha, kt, ks);
+        const ImpactResult b = solve(p, 1.0, 180.0 - alpha, kt, -ks);
+        EXPECT_NEAR(b.rebound_angle_deg, 180.0 - a.rebound_angle_deg, 1e-8);
+        EXPECT_NEAR(b.rebound_speed, a.rebound_speed, 1e-10);
+        EXPECT_NEAR(b.outgoing.spin.x, a.outgoing.spin.x, 1e-7);
+        EXPECT_NEAR(b.outgoing.spin.y, -a.outgoing.spin.y, 1e-7);
+        EXPECT_NEAR(b.outgoing.spin.z, -a.outgoing.spin.z, 1e-7);
+      }
+    }
+  }
+}
+
+TEST(CushionImpact, KineticEnergyNeverRises) {
+  CushionParams p;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    // General states: any spin vector, not just the paper's form.
+    BallState in;
+    in.velocity = {3 * u(rng), 0.01 + 2.5 * std::abs(u(rng)), 0.0};
+    in.spin = {300 * u(rng), 300 * u(rng), 300 * u(rng)};
+    for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::paper}) {
+      ImpactOptions o;
+      o.method = m;
+      const ImpactResult r = resolve_impact(p, in, o);
+      ASSERT_TRUE(usable(r.status)) << r.message;
+      const double before = kinetic_energy(p, in), after = kinetic_energy(p, r.outgoing);
+      // The paper scheme's first-order error is allowed a relative 1e-3.
+      const double slack = m == ImpactMethod::exact ? 1e-12 : 1e-3;
+      EXPECT_LE(after, before * (1 + slack)) << to_string(m);
+    }
+  }
+}
+
+TEST(CushionImpact, ScaleInvarianceInSpeed) {
+  CushionParams p;
+  for (double alpha : {3.0, 45.0, 120.0}) {
+    const ImpactResult unit = solve(p, 1.0, alpha, 1.7, -0.8);
+    for (double v0 : {1e-4, 0.05, 2.0, 10.0}) {
+      const ImpactResult r = solve(p, v0, alpha, 1.7, -0.8);
+      EXPECT_NEAR(r.rebound_speed / v0, unit.rebound_speed, 1e-10);
+      EXPECT_NEAR(r.rebound_angle_deg, unit.rebound_angle_deg, 1e-8);
+      EXPECT_NEAR(r.impulse_total / v0, unit.impulse_total, 1e-11);
+    }
+  }
+}
+
+TEST(CushionImpact, PaperSchemeConvergesAtFirstOrder) {
+  CushionParams p;
+  // Cases with and without a stick during the impact.
+  for (auto c : {std::array<double, 3>{45.0, 1.0, 0.0}, std::array<double, 3>{70.0, 0.0, 1.0},
+                 std::array<double, 3>{90.0, 1.0, 0.0}}) {
+    const ImpactResult exact = solve(p, 1.0, c[0], c[1], c[2]);
+    // Errors at N and 16 N; first order means about a 16-fold fall. The end-of-phase
+    // detection makes the error jagged, so fit over the largest error in each decade.
+    auto worst_error = [&](int n0) {
+      double m = 0.0;
+      for (int n = n0; n < 2 * n0; n += n0 / 8)
+        m = std::max(m, state_difference(p, solve(p, 1.0, c[0], c[1], c[2],
+                                                  ImpactMethod::paper, n),
+                                         exact, 1.0));
+      return m;
+    };
+    const double coarse = worst_error(1000), fine = worst_error(16000);
+    const double order = std::log(coarse / fine) / std::log(16.0);
+    EXPECT_GT(order, 0.75) << "alpha " << c[0];
+    EXPECT_LT(order, 1.35) << "alpha " << c[0];
+    EXPECT_LT(fine, 1e-3);
+  }
+}
+
+TEST(CushionImpact, RollingReboundAngleIndependentOfSpeed) {  // paper, figure 8
+  CushionParams p;
+  for (double alpha = 5.0; alpha < 90.0; alpha += 5.0) {
+    const double ref = solve(p, 1.0, alpha, 1.0, 0.0).rebound_angle_deg;
+    for (double v0 : {0.5, 1.5, 2.5}) {
+      EXPECT_NEAR(solve(p, v0, alpha, 1.0, 0.0).rebound_angle_deg, ref, 1e-8);
+    }
+  }
+}
+
+TEST(CushionImpact, LargestSpeedLossNearFortyDegrees) {  // paper, figure 9
+  CushionParams p;
+  for (double kt : {0.0, 0.5, 1.0, 1.5, 2.0}) {
+    double best_alpha = 0.0, lowest = INFINITY;
+    for (double alpha = 1.0; alpha <= 90.0; alpha += 0.5) {
+      const double ratio = solve(p, 1.0, alpha, kt, 0.0).rebound_speed;
+      if (ratio < lowest) {
+        lowest = ratio;
+        best_alpha = alpha;
+      }
+    }
+    EXPECT_GT(best_alpha, 30.0) << "k_T " << kt;
+    EXPECT_LT(best_alpha, 50.0) << "k_T " << kt;
+  }
+}
+
+TEST(CushionImpact, RightSpinReboundsFasterThanItCame) {  // paper, figure 10
+  CushionParams p;
+  int faster = 0;
+  for (double alpha = 10.0; alpha <= 80.0; alpha += 10.0)
+    faster += solve(p, 1.0, alpha, 1.0, 2.0).rebound_speed > 1.0;
+  EXPECT_GE(faster, 4);
+  // And right spin always adds speed compared with no sidespin.
+  for (double alpha = 10.0; alpha <= 80.0; alpha += 10.0)
+    EXPECT_GT(solve(p, 1.0, alpha, 1.0, 2.0).rebound_speed,
+              solve(p, 1.0, alpha, 1.0, 0.0).rebound_speed);
+}
+
+TEST(CushionImpact, StrongLeftSpinNearHeadOnComesBack) {  // paper, figures 10 and 11
+  CushionParams p;
+  const ImpactResult r = solve(p, 1.0, 85.0, 1.0, -2.0);
+  EXPECT_GT(r.rebound_angle_deg, 90.0);
+  // Without sidespin the ball goes on to the far side.
+  EXPECT_LT(solve(p, 1.0, 85.0, 1.0, 0.0).rebound_angle_deg, 90.0);
+}
+
+TEST(CushionImpact, ExtremeInputsTerminateWithFiniteResults) {
+  CushionParams p;
+  for (double v0 : {1e-4, 1e-2, 1.0, 10.0})
+    for (double alpha : {0.01, 1.0, 90.0, 179.99})
+      for (double kt : {-10.0, 0.0, 1.0, 10.0})
+        for (double ks : {-10.0, 0.0, 10.0})
+          for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::paper}) {
+            const ImpactResult r = solve(p, v0, alpha, kt, ks, m);
+            ASSERT_TRUE(usable(r.status)) << r.message << " " << v0 << " " << alpha;
+            EXPECT_TRUE(std::isfinite(r.rebound_speed) && std::isfinite(r.rebound_angle_deg) &&
+                        is_finite(r.outgoing.spin));
+            EXPECT_EQ(r.status == ImpactStatus::rigid_limit_exceeded,
+                      v0 * std::sin(alpha * kDeg) > p.rigid_speed_limit);
+          }
+}
+
+TEST(CushionImpact, InvalidInputNamesTheField) {
+  CushionParams p;
+  struct Case {
+    CushionParams params;
+    BallState state;
+    std::string field;
+  };
+  const BallState good = incoming_state_k(1.0, 45.0, 1.0, 0.0, p.radius);
+  std::vector<Case> cases;
+  auto with = [&](auto change, std::string field) {
+    CushionParams q = p;
+    BallState s = good;
+    change(q, s);
+    cases.push_back({q, s, field});
+  };
+  with([](CushionParams& q, BallState&) { q.mass = -1; }, "mass");
+  with([](CushionParams& q, BallState&) { q.radius = 0; }, "radius");
+  with([](CushionParams& q, BallState&) { q.cushion_height = q.radius * 0.9; }, "cushion_height");
+  with([](CushionParams& q, BallState&) { q.mu_cushion = -0.1; }, "mu_cushion");
+  with([](CushionParams& q, BallState&) { q.mu_cushion = 0.9; }, "mu_cushion");
+  with([](CushionParams& q, BallState&) { q.mu_table = NAN; }, "mu_table");
+  with([](CushionParams& q, BallState&) { q.restitution = 0.0; }, "restitution");
+  with([](CushionParams& q, BallState&) { q.restitution = 1.2; }, "restitution");
+  with([](CushionParams&, BallState& s) { s.velocity.y = -0.2; }, "velocity.y");
+  with([](CushionParams&, BallState& s) { s.velocity.x = NAN; }, "velocity.x");
+  with([](CushionParams&, BallState& s) { s.spin.z = INFINITY; }, "spin.z");
+  with([](CushionParams&, BallState& s) { s.velocity.z = 0.1; }, "velocity.z");
+  for (const Case& c : cases) {
+    const ImpactResult r = resolve_impact(c.params, c.state);
+    EXPECT_EQ(r.status, ImpactStatus::invalid_input) << c.field;
+    EXPECT_EQ(r.message.rfind(c.field, 0), 0u) << r.message;
+  }
+}
+
+TEST(CushionImpact, StickAtTheCushionHoldsWithoutChattering) {
+  // A stun ball head-on sticks at the cushion part-way through compression: the
+  // slip there must stay at zero to rounding, not flip from step to step.
+  CushionParams p;
+  std::vector<TraceSample> trace;
+  ImpactOptions o;
+  o.trace = &trace;
+  const ImpactResult r = resolve_impact(p, incoming_state_k(1.0, 90.0, 0.0, 0.0, p.radius), o);
+  ASSERT_GE(r.transition_count, 1);
+  ASSERT_EQ(r.transitions[0].contact, Contact::cushion);
+  ASSERT_TRUE(r.transitions[0].sticking);
+  const double stick_at = r.transitions[0].impulse;
+  const double slip_at = r.transition_count > 1 ? r.transitions[1].impulse : r.impulse_total;
+  int inside = 0;
+  for (const TraceSample& t : trace) {
+    if (t.impulse > stick_at * (1 + 1e-9) && t.impulse < slip_at * (1 - 1e-9)) {
+      EXPECT_LT(t.slip_cushion, 1e-10);
+      ++inside;
+    }
+  }
+  EXPECT_GT(inside, 5);
+}
+
+TEST(CushionImpact, ParseMethodRoundTrips) {
+  for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::paper, ImpactMethod::table}) {
+    ImpactMethod parsed = ImpactMethod::paper;
+    ASSERT_TRUE(parse_method(to_string(m), &parsed));
+    EXPECT_EQ(parsed, m);
+  }
+  ImpactMethod unused;
+  EXPECT_FALSE(parse_method("rk4", &unused));
+}
+
+}  // namespace
+}  // namespace cueplan::physics
