@@ -157,9 +157,14 @@ bool ExactIntegrator::extrapolate(double t, const State& y, const State& f0, dou
   static constexpr std::array<double, kMaxColumns> kWork = {2, 5, 10, 17, 26, 37, 50, 65};
   const double length = std::abs(h);
   const int last = std::min(target_column_ + 1, kMaxColumns - 1);
-  std::array<State, kMaxColumns> prev{}, cur{};
-  std::array<double, kMaxColumns> h_opt{};
+  // row[j] holds T(k, j) of the current row k; it is updated in place.
+  std::array<State, kMaxColumns> row;
+  std::array<double, kMaxColumns> err_of{};
   auto substeps = [](int k) { return 2.0 * (k + 1); };
+  // Step size that would let column k converge, from its error estimate.
+  auto h_opt = [&](int k) {
+    return length * 0.94 * std::pow(0.65 * tol_ / std::max(err_of[k], 1e-300), 1.0 / (2 * k + 1));
+  };
   for (int k = 0; k <= last; ++k) {
     const int n = 2 * (k + 1);
     const double hs = h / n;
@@ -174,58 +179,59 @@ bool ExactIntegrator::extrapolate(double t, const State& y, const State& f0, dou
         z1[i] = z2;
       }
     }
-    // Richardson extrapolation in h^2 (Aitken-Neville).
-    cur[0] = z1;
+    // Richardson extrapolation in h^2 (Aitken-Neville), in place.
+    State above = row[0];  // T(k-1, j-1) as the sweep moves right
+    row[0] = z1;
     for (int j = 1; j <= k; ++j) {
       const double ratio = static_cast<double>(n) / (2 * (k - j + 1));
       const double denom = ratio * ratio - 1.0;
-      for (int i = 0; i < kDim; ++i)
-        cur[j][i] = cur[j - 1][i] + (cur[j - 1][i] - prev[j - 1][i]) / denom;
+      const State next_above = row[j];
+      for (int i = 0; i < kDim; ++i) row[j][i] = row[j - 1][i] + (row[j - 1][i] - above[i]) / denom;
+      above = next_above;
     }
     if (k >= 1) {
       double err = 0.0, size = 1.0;
       for (int i = 0; i < kDim; ++i) {
-        err = std::max(err, std::abs(cur[k][i] - cur[k - 1][i]));
-        size = std::max(size, std::abs(cur[k][i]));
+        err = std::max(err, std::abs(row[k][i] - row[k - 1][i]));
+        size = std::max(size, std::abs(row[k][i]));
       }
       if (!std::isfinite(err)) {
         report->next_h = 0.25 * length;
         return false;
       }
+      err_of[k] = err;
       // Rounding bounds what the estimate can show: never ask for less.
       const double tol = std::max(tol_, 4e-16 * size);
-      h_opt[k] = length * 0.94 * std::pow(0.65 * tol / std::max(err, 1e-300), 1.0 / (2 * k + 1));
       if (err <= tol) {
-        result = cur[k];
+        result = row[k];
         report->column = k;
         int next = k;
         if (k < target_column_) {
           // Converged sooner than planned: the step could have been longer.
-          report->next_h = std::max(h_opt[k], 2.0 * length);
+          report->next_h = std::max(h_opt(k), 2.0 * length);
           return true;
         }
-        if (k >= 2 && kWork[k - 1] / h_opt[k - 1] < 0.9 * kWork[k] / h_opt[k]) {
+        if (k >= 2 && kWork[k - 1] / h_opt(k - 1) < 0.9 * kWork[k] / h_opt(k)) {
           next = k - 1;
         } else if (k == target_column_ && k + 1 < kMaxColumns - 1 &&
-                   kWork[k] / h_opt[k] < 0.9 * kWork[k - 1] / h_opt[k - 1]) {
+                   kWork[k] / h_opt(k) < 0.9 * kWork[k - 1] / h_opt(k - 1)) {
           next = k + 1;
         }
-        report->next_h = next == k + 1 ? h_opt[k] * kWork[k + 1] / kWork[k] : h_opt[next];
+        report->next_h = next == k + 1 ? h_opt(k) * kWork[k + 1] / kWork[k] : h_opt(next);
         target_column_ = std::clamp(next, 2, kMaxColumns - 2);
         return true;
       }
       // Give up early when the error cannot plausibly fall to the tolerance by the
       // last column: one more column gains about (n_{k+1} / n_0)^2.
       if (k == target_column_ && err > tol * std::pow(substeps(k + 1) / substeps(0), 2)) {
-        report->next_h = std::clamp(h_opt[k], 0.05 * length, 0.7 * length);
-        if (k >= 2 && kWork[k - 1] / h_opt[k - 1] < kWork[k] / h_opt[k])
+        report->next_h = std::clamp(h_opt(k), 0.05 * length, 0.7 * length);
+        if (k >= 2 && kWork[k - 1] / h_opt(k - 1) < kWork[k] / h_opt(k))
           target_column_ = std::max(2, k - 1);
         return false;
       }
     }
-    std::swap(prev, cur);
   }
-  report->next_h = std::clamp(h_opt[last], 0.05 * length, 0.7 * length);
+  report->next_h = std::clamp(h_opt(last), 0.05 * length, 0.7 * length);
   return false;
 }
 

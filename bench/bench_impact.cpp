@@ -1,0 +1,123 @@
+// Time per cushion impact for each method, with each configuration's error against a
+// converged reference on the same inputs, so run time and error come from one run.
+//
+//   bench_impact --benchmark_format=json > impact.json
+//   python3 bench/error_vs_time.py impact.json   # table and plot for bench/README.md
+//
+// Inputs: 4096 impacts drawn uniformly (seeded) over the domain of the accuracy
+// targets: alpha in (0, 180) deg, |k_T|, |k_S| <= 3, V0 in (0.01, 5) m/s. The
+// reference is the exact method at tolerance 1e-14.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/cushion_impact.hpp"
+#include "cueplan/physics/impact_table.hpp"
+
+namespace {
+
+using namespace cueplan::physics;
+
+struct Sample {
+  double speed, alpha_deg, topspin_k, sidespin_k;
+  BallState state;
+  ImpactResult reference;
+};
+
+const std::vector<Sample>& samples() {
+  static const std::vector<Sample> all = [] {
+    CushionParams params;
+    std::mt19937_64 rng(2010);
+    std::uniform_real_distribution<double> alpha(0.01, 179.99), k(-3.0, 3.0), v(0.01, 5.0);
+    ImpactOptions converged;
+    converged.tolerance = 1e-14;
+    converged.max_steps = 1000000;
+    std::vector<Sample> out;
+    for (int i = 0; i < 4096; ++i) {
+      Sample s{v(rng), alpha(rng), k(rng), k(rng), {}, {}};
+      s.state = incoming_state_k(s.speed, s.alpha_deg, s.topspin_k, s.sidespin_k, params.radius);
+      s.reference = resolve_impact(params, s.state, converged);
+      out.push_back(s);
+    }
+    return out;
+  }();
+  return all;
+}
+
+const ImpactTable& table() {
+  static const ImpactTable t =
+      ImpactTable::load_or_build(CushionParams{}, ImpactTableOptions{}, default_table_cache_dir());
+  return t;
+}
+
+// Error of one result against the reference: outgoing velocity and R * spin over V0.
+double state_error(const CushionParams& p, const ImpactResult& r, const Sample& s) {
+  const Vec3 dv = r.outgoing.velocity - s.reference.outgoing.velocity;
+  const Vec3 dw = r.outgoing.spin - s.reference.outgoing.spin;
+  return std::max({std::abs(dv.x), std::abs(dv.y), p.radius * std::abs(dw.x),
+                   p.radius * std::abs(dw.y), p.radius * std::abs(dw.z)}) /
+         s.speed;
+}
+
+void run_impacts(benchmark::State& state, ImpactOptions options) {
+  const CushionParams params;
+  const std::vector<Sample>& in = samples();
+  // Accuracy over every sample, outside the timed loop.
+  std::vector<double> errors;
+  double worst_speed = 0.0, worst_angle = 0.0;
+  long long evaluations = 0;
+  for (const Sample& s : in) {
+    const ImpactResult r = resolve_impact(params, s.state, options);
+    errors.push_back(state_error(params, r, s));
+    worst_speed = std::max(worst_speed,
+                           std::abs(r.rebound_speed - s.reference.rebound_speed) / s.speed);
+    worst_angle =
+        std::max(worst_angle, std::abs(r.rebound_angle_deg - s.reference.rebound_angle_deg));
+    evaluations += r.rhs_evaluations;
+  }
+  std::sort(errors.begin(), errors.end());
+
+  size_t i = 0;
+  for (auto _ : state) {
+    const ImpactResult r = resolve_impact(params, in[i].state, options);
+    benchmark::DoNotOptimize(r.rebound_speed);
+    if (++i == in.size()) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["max_state_err"] = errors.back();
+  state.counters["median_state_err"] = errors[errors.size() / 2];
+  state.counters["max_speed_err"] = worst_speed;
+  state.counters["max_angle_err_deg"] = worst_angle;
+  state.counters["rhs_per_impact"] = static_cast<double>(evaluations) / in.size();
+}
+
+void BM_ImpactExact(benchmark::State& state) {
+  ImpactOptions o;
+  o.tolerance = std::pow(10.0, -static_cast<double>(state.range(0)));
+  run_impacts(state, o);
+}
+BENCHMARK(BM_ImpactExact)->ArgName("tol_exp")->DenseRange(6, 14, 2);
+
+void BM_ImpactPaper(benchmark::State& state) {
+  ImpactOptions o;
+  o.method = ImpactMethod::paper;
+  o.paper_steps = static_cast<int>(state.range(0));
+  run_impacts(state, o);
+}
+BENCHMARK(BM_ImpactPaper)->ArgName("N")->Arg(500)->Arg(5000)->Arg(50000);
+
+void BM_ImpactTable(benchmark::State& state) {
+  ImpactOptions o;
+  o.method = ImpactMethod::table;
+  o.table = &table();
+  run_impacts(state, o);
+}
+BENCHMARK(BM_ImpactTable);
+
+}  // namespace
+
+BENCHMARK_MAIN();
