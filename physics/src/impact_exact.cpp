@@ -337,7 +337,7 @@ void ExactIntegrator::run() {
   const double trace_cap = trace_ ? -t_start / 64.0 : INFINITY;
   bool compressing = true;
   double work_end = 0.0;
-  double h = -t_start;  // try the whole compression in one step
+  double h = 0.4 * -t_start;  // first guess; the extrapolation adapts it at once
   const int max_mode_changes = 8 * kMaxTransitions;
 
   while (steps_ < max_steps_) {
@@ -392,11 +392,8 @@ void ExactIntegrator::run() {
     StepReport report;
     ++steps_;
     if (!extrapolate(t_, y_, f0, step, next, &report)) {
-      if ((target == Target::slip_zero_i || target == Target::slip_zero_c) && approach_ == 1.0) {
-        approach_ = 0.9;
-      } else {
-        h = report.next_h;
-      }
+      h = report.next_h;
+      if (target == Target::slip_zero_i || target == Target::slip_zero_c) approach_ = 0.9;
       continue;
     }
 
@@ -406,8 +403,9 @@ void ExactIntegrator::run() {
     const ContactSlip si1 = slip_i(t_ + step, next), sc1 = slip_c(t_ + step, next);
     const bool moving_i = !modes_.stick_i && si0.magnitude() > zero_slip_;
     const bool moving_c = !modes_.stick_c && sc0.magnitude() > zero_slip_;
-    if ((moving_i && si0.x * si1.x + si0.y * si1.y < 0.0) ||
-        (moving_c && sc0.x * sc1.x + sc0.y * sc1.y < 0.0)) {
+    // (Ending within zero_slip_ of zero is a landing, whatever the rounding sign.)
+    if ((moving_i && si1.magnitude() > zero_slip_ && si0.x * si1.x + si0.y * si1.y < 0.0) ||
+        (moving_c && sc1.magnitude() > zero_slip_ && sc0.x * sc1.x + sc0.y * sc1.y < 0.0)) {
       h = 0.5 * step;
       continue;
     }
@@ -459,7 +457,6 @@ void ExactIntegrator::run() {
       out_->impulse_compression = y_[kP];
       out_->work_compression = y_[kW];
       work_end = (1.0 - e_ * e_) * y_[kW];
-      h = INFINITY;
     }
   }
 
