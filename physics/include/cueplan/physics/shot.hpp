@@ -1,0 +1,141 @@
+// From a cue strike to the cue ball at rest, event by event (shared/PHYSICS.md).
+//
+// Between events the ball slides or rolls on the cloth with constant acceleration,
+// so its position is a quadratic in time and every event - slide to roll, sidespin
+// stop, stop, cushion contact, pocket capture, contact with an obstacle ball - is a
+// root of a polynomial, solved rather than stepped to. At a cushion contact the
+// state is turned into that cushion's frame, resolved by the impact library and
+// turned back.
+//
+// Pure functions of their arguments: no globals, safe from many threads.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/cushion_impact.hpp"
+
+namespace cueplan::physics {
+
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+// Cloth friction and gravity (SI; defaults from PHYSICS.md). Sliding on the cloth uses
+// the ball-cloth friction of the impact model, CushionParams::mu_table, so the two
+// can never disagree.
+struct ClothParams {
+  double mu_roll = 0.01;    // rolling resistance
+  double mu_spin = 0.044;   // spinning (sidespin) friction
+  double gravity = 9.81;    // m/s^2
+};
+
+struct Pocket {
+  Vec2 centre;          // m, table frame
+  double radius = 0.0;  // m, a ball whose centre enters this circle is pocketed
+};
+
+// The table and everything on it that stays fixed during a shot.
+struct Scene {
+  double length = 3.569;  // m between the cushion noses x = 0 and x = length
+  double width = 1.778;   // m between y = 0 and y = width
+  CushionParams ball_and_cushion;  // ball mass and radius, cushion height, mu_w, mu_s, e
+  ClothParams cloth;
+  std::vector<Pocket> pockets;
+  std::vector<Vec2> obstacles;  // centres of other balls at rest (same radius)
+
+  double radius() const { return ball_and_cushion.radius; }
+  // Distance from a cushion nose line at which the ball's centre meets it: R cos(theta).
+  double contact_offset() const;
+  // Empty when usable; otherwise one line naming the field.
+  std::string validate() const;
+  // Where the ball may rest: inside the cushions, not in a pocket or an obstacle.
+  // Empty when the position is fine; otherwise why not, naming `what`.
+  std::string check_position(Vec2 position, const std::string& what) const;
+};
+
+// Snooker table with the six standard pockets.
+Scene snooker_scene();
+
+// A stroke: speed V (m/s) along aim phi (deg from +x), topspin k_T and sidespin k_S in
+// the paper's dimensionless form (PHYSICS.md, "Cue strike").
+struct Shot {
+  double speed = 1.0;
+  double aim_deg = 0.0;
+  double topspin_k = 0.0;
+  double sidespin_k = 0.0;
+};
+
+enum class EventType {
+  strike,         // t = 0
+  slide_to_roll,  // the contact point stops slipping on the cloth
+  spin_stop,      // sidespin decays to zero
+  cushion,        // cushion contact resolved by the impact model
+  pocket,         // the centre entered a pocket's capture circle
+  obstacle,       // contact with an obstacle ball
+  rest,           // the ball stops
+};
+const char* to_string(EventType type);
+
+enum class Motion { sliding, rolling, resting };
+const char* to_string(Motion motion);
+
+struct ShotEvent {
+  EventType type = EventType::strike;
+  double time = 0.0;  // s since the strike
+  Vec2 position;      // m
+  Vec2 velocity;      // m/s just after the event
+  Vec3 spin;          // rad/s just after the event
+  int cushion = -1;   // 0: y = 0, 1: x = length, 2: y = width, 3: x = 0 (cushion events)
+  int index = -1;     // pocket or obstacle index (pocket and obstacle events)
+  double normal_speed = 0.0;  // m/s into the cushion (cushion events)
+};
+
+// One piece of path between events: p(t) = p0 + v0 (t - t0) + a (t - t0)^2 / 2.
+struct PathSegment {
+  double t0 = 0.0, t1 = 0.0;
+  Vec2 p0, v0, accel;
+  Motion motion = Motion::sliding;
+  Vec2 at(double t) const;
+};
+
+enum class ShotStatus {
+  rest,            // came to rest on the table
+  pocketed,        // entered a pocket
+  hit_obstacle,    // touched an obstacle ball
+  invalid_input,   // nothing simulated; message names the field
+  event_limit,     // more events than SimulationOptions::max_events
+  impact_failed,   // the impact model could not resolve a cushion contact
+};
+const char* to_string(ShotStatus status);
+
+struct SimulationOptions {
+  // Impact method for cushion contacts. With a table, the table answers where its
+  // measured error meets `impact_accuracy`, and the exact method elsewhere.
+  ImpactMethod impact_method = ImpactMethod::exact;
+  double impact_accuracy = 1e-9;        // relative error wanted from each impact
+  const ImpactTable* table = nullptr;   // used when impact_method is table
+  int max_events = 200;                 // bound on events (cushions, stops, ...)
+  bool record_path = true;              // fill ShotResult::path
+};
+
+struct ShotResult {
+  ShotStatus status = ShotStatus::invalid_input;
+  std::string message;
+  Vec2 final_position;
+  double duration = 0.0;  // s from the strike to rest (or to the end event)
+  int cushion_hits = 0;
+  bool pocketed = false;
+  bool hit_obstacle = false;
+  double max_cushion_normal_speed = 0.0;  // m/s; above the rigid limit the model is flagged
+  bool rigid_limit_exceeded = false;
+  std::vector<ShotEvent> events;
+  std::vector<PathSegment> path;  // when record_path
+};
+
+// Simulates one stroke of the cue ball from `cue_ball` on `scene`.
+ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
+                    const SimulationOptions& options = {});
+
+}  // namespace cueplan::physics

@@ -1,0 +1,80 @@
+// Real roots of low-degree polynomials on an interval (private header).
+//
+// The polynomial is split at the roots of its derivative (found the same way, one
+// degree lower) into monotone pieces; a piece whose ends differ in sign holds exactly
+// one root, found by bisection to rounding. No root with a sign change is missed,
+// however close two roots are; a root without a sign change (a graze) is ignored.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace cueplan::physics::detail {
+
+constexpr int kMaxDegree = 4;
+
+// c[0] + c[1] t + ... + c[degree] t^degree
+inline double evaluate(const double* c, int degree, double t) {
+  double v = c[degree];
+  for (int i = degree - 1; i >= 0; --i) v = v * t + c[i];
+  return v;
+}
+
+// One root of the polynomial in [a, b] given opposite signs at the ends.
+inline double bisect(const double* c, int degree, double a, double b, double fa) {
+  for (int i = 0; i < 200; ++i) {
+    const double m = 0.5 * (a + b);
+    if (m <= a || m >= b) break;
+    const double fm = evaluate(c, degree, m);
+    if (fm == 0.0) return m;
+    if ((fm < 0.0) == (fa < 0.0)) {
+      a = m;
+      fa = fm;
+    } else {
+      b = m;
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+// Roots in [lo, hi] in ascending order; returns how many were written to out
+// (at most `degree`).
+inline int roots_in(const double* c, int degree, double lo, double hi, double* out) {
+  while (degree > 0 && c[degree] == 0.0) --degree;
+  if (degree == 0 || !(lo <= hi)) return 0;
+  if (degree == 1) {
+    const double r = -c[0] / c[1];
+    if (r >= lo && r <= hi) {
+      out[0] = r;
+      return 1;
+    }
+    return 0;
+  }
+  // Monotone pieces between the derivative's roots.
+  std::array<double, kMaxDegree> dc{};
+  for (int i = 1; i <= degree; ++i) dc[i - 1] = i * c[i];
+  std::array<double, kMaxDegree + 1> cuts{};
+  int n_cuts = 0;
+  cuts[n_cuts++] = lo;
+  std::array<double, kMaxDegree> critical{};
+  const int n_crit = roots_in(dc.data(), degree - 1, lo, hi, critical.data());
+  for (int i = 0; i < n_crit; ++i) cuts[n_cuts++] = critical[i];
+  cuts[n_cuts++] = hi;
+
+  int n = 0;
+  double f_prev = evaluate(c, degree, cuts[0]);
+  if (f_prev == 0.0) out[n++] = cuts[0];
+  for (int i = 1; i < n_cuts && n < degree; ++i) {
+    const double f = evaluate(c, degree, cuts[i]);
+    if (f == 0.0) {
+      if (n == 0 || out[n - 1] != cuts[i]) out[n++] = cuts[i];
+    } else if (f_prev != 0.0 && (f < 0.0) != (f_prev < 0.0)) {
+      out[n++] = bisect(c, degree, cuts[i - 1], cuts[i], f_prev);
+    }
+    f_prev = f;
+  }
+  return n;
+}
+
+}  // namespace cueplan::physics::detail
