@@ -58,10 +58,10 @@ struct ClothModel {
 
   explicit ClothModel(const Scene& s)
       : radius(s.radius()),
-        slide_decel(s.ball_and_cushion.mu_table * s.cloth.gravity),
+        slide_decel(s.cloth.mu_slide * s.cloth.gravity),
         roll_decel(s.cloth.mu_roll * s.cloth.gravity),
         spin_decel(2.5 * s.cloth.mu_spin * s.cloth.gravity / s.radius()),
-        slide_spin(2.5 * s.ball_and_cushion.mu_table * s.cloth.gravity / s.radius()) {}
+        slide_spin(2.5 * s.cloth.mu_slide * s.cloth.gravity / s.radius()) {}
 
   // Velocity of the contact point with the cloth: v + w x (-R z).
   Vec2 slip(const Ball& b) const { return {b.v.x - radius * b.w.y, b.v.y + radius * b.w.x}; }
@@ -179,10 +179,10 @@ std::string Scene::validate() const {
     return describe("physics.mu_roll",
                     "must be positive and finite: without rolling resistance a ball never stops",
                     cloth.mu_roll);
-  if (!(ball_and_cushion.mu_table > 0.0))
+  if (!std::isfinite(cloth.mu_slide) || !(cloth.mu_slide > 0.0))
     return describe("physics.mu_slide",
-                    "must be positive: without sliding friction a ball never starts to roll",
-                    ball_and_cushion.mu_table);
+                    "must be positive and finite: without sliding friction a ball never rolls",
+                    cloth.mu_slide);
   if (!std::isfinite(cloth.mu_spin) || cloth.mu_spin < 0.0)
     return describe("physics.mu_spin", "must be finite and not negative", cloth.mu_spin);
   if (!std::isfinite(cloth.gravity) || !(cloth.gravity > 0.0))

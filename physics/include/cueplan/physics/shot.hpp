@@ -22,10 +22,12 @@ struct Vec2 {
   double y = 0.0;
 };
 
-// Cloth friction and gravity (SI; defaults from PHYSICS.md). Sliding on the cloth uses
-// the ball-cloth friction of the impact model, CushionParams::mu_table, so the two
-// can never disagree.
+// Cloth friction and gravity (SI; defaults from PHYSICS.md). mu_slide is the same
+// ball-cloth friction as the impact model's CushionParams::mu_table; problem files set
+// both from one field, and only tests of limits (a frictionless impact on real cloth)
+// set them apart.
 struct ClothParams {
+  double mu_slide = 0.212;  // ball-cloth sliding friction
   double mu_roll = 0.01;    // rolling resistance
   double mu_spin = 0.044;   // spinning (sidespin) friction
   double gravity = 9.81;    // m/s^2
