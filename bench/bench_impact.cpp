@@ -92,7 +92,8 @@ void run_impacts(benchmark::State& state, ImpactOptions options) {
   state.counters["median_state_err"] = errors[errors.size() / 2];
   state.counters["max_speed_err"] = worst_speed;
   state.counters["max_angle_err_deg"] = worst_angle;
-  state.counters["rhs_per_impact"] = static_cast<double>(evaluations) / in.size();
+  state.counters["rhs_per_impact"] =
+      static_cast<double>(evaluations) / static_cast<double>(in.size());
 }
 
 void BM_ImpactExact(benchmark::State& state) {

@@ -47,7 +47,8 @@ class ExactIntegrator {
         tol_(tolerance),
         max_steps_(max_steps),
         trace_(trace),
-        out_(out) {
+        out_(out),
+        trace_from_(trace ? trace->size() : 0) {
     const Scaled& q = impact.incoming;
     t_ = -q.uy;
     y_ = {q.ux, q.ox, q.oy, q.oz, 0.0, 0.0};
@@ -127,6 +128,7 @@ class ExactIntegrator {
   const int max_steps_;
   std::vector<TraceSample>* trace_;
   ScaledOutcome* out_;
+  size_t trace_from_;  // where this impact's samples start in trace_
 
   double t_ = 0.0;
   State y_{};
@@ -460,6 +462,16 @@ void ExactIntegrator::run() {
     }
   }
 
+  // The landing on the end of the impact may have stepped past it and back: keep
+  // the history monotone in P_I.
+  if (trace_) {
+    const double p_end = y_[kP];
+    trace_->erase(std::remove_if(trace_->begin() + static_cast<std::ptrdiff_t>(trace_from_),
+                                 trace_->end(),
+                                 [&](const TraceSample& t) { return t.impulse > p_end; }),
+                  trace_->end());
+    if (trace_->size() == trace_from_ || trace_->back().impulse != p_end) record();
+  }
   out_->outgoing = scaled(t_, y_);
   out_->impulse_total = y_[kP];
   out_->work_total = y_[kW];

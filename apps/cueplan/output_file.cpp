@@ -1,0 +1,46 @@
+#include "output_file.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+
+namespace cueplan::cli {
+
+std::string ensure_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return "cannot create directory " + dir.string() + ": " + ec.message();
+  if (!std::filesystem::is_directory(dir, ec))
+    return dir.string() + " exists and is not a directory";
+  return {};
+}
+
+std::string write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
+  // The process id keeps two concurrent writers of the same file apart.
+  std::filesystem::path temporary = path;
+  temporary += ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) return "cannot write " + temporary.string() + ": " + std::strerror(errno);
+    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      return "cannot write " + temporary.string() + ": " + std::strerror(errno);
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    return "cannot rename " + temporary.string() + " to " + path.string() + ": " + ec.message();
+  }
+  return {};
+}
+
+}  // namespace cueplan::cli

@@ -1,0 +1,379 @@
+#include "rebound_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "exit_codes.hpp"
+#include "output_file.hpp"
+#include "rebound_batch.hpp"
+#include "rebound_inputs.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+
+constexpr const char* kCommandName = "cueplan rebound";
+
+std::string number(double value, const char* unit = nullptr) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  std::string s = buf;
+  if (unit) s += std::string(" ") + unit;
+  return s;
+}
+
+std::string transition_text(const phys::SlipTransition& t) {
+  return std::string(phys::to_string(t.contact)) + (t.sticking ? " sticks" : " slips") +
+         " at P_I = " + number(t.impulse, "N s");
+}
+
+std::string rigid_limit_warning(const phys::CushionParams& params, const Incidence& in) {
+  const double normal_speed = phys::incoming_state(in.speed, in.angle_deg, 0.0, 0.0).velocity.y;
+  return "warning: normal speed V0 sin(alpha) = " + number(normal_speed, "m/s") +
+         " exceeds the rigid-cushion limit of " + number(params.rigid_speed_limit, "m/s") +
+         "; the model trusts a rigid cushion only below it";
+}
+
+void write_text(std::ostream& out, const phys::CushionParams& params, const Incidence& in,
+                const phys::ImpactResult& r) {
+  const auto line = [&](const char* label, const std::string& text) {
+    char buf[24];
+    std::snprintf(buf, sizeof buf, "%-16s", label);
+    out << buf << text << '\n';
+  };
+  const double spin_unit = in.speed / params.radius;  // rad/s per unit of k
+  line("incoming",
+       "V0 = " + number(in.speed, "m/s") + " at alpha = " + number(in.angle_deg, "deg") +
+           ", w_T = " + number(in.topspin, "rad/s") + " (k_T = " + number(in.topspin / spin_unit) +
+           "), w_S = " + number(in.sidespin, "rad/s") +
+           " (k_S = " + number(in.sidespin / spin_unit) + ")");
+  const phys::Vec3& v = r.outgoing.velocity;
+  const phys::Vec3& w = r.outgoing.spin;
+  line("rebound speed", number(r.rebound_speed, "m/s"));
+  line("rebound angle", number(r.rebound_angle_deg, "deg"));
+  line("velocity", "vx = " + number(v.x, "m/s") + ", vy = " + number(v.y, "m/s") +
+                       "  (cushion frame: X along the cushion, Y into it, Z up)");
+  line("spin", "wx = " + number(w.x, "rad/s") + ", wy = " + number(w.y, "rad/s") +
+                   ", wz = " + number(w.z, "rad/s") + "  (cushion frame)");
+  line("status", phys::to_string(r.status));
+  const bool interpolated = r.method_used == phys::ImpactMethod::table;
+  line("method", interpolated
+                     ? std::string("table (interpolated)")
+                     : std::string(phys::to_string(r.method_used)) + " (" +
+                           std::to_string(r.rhs_evaluations) + " right-hand-side evaluations)");
+  line("impulse", "compression " + number(r.impulse_compression, "N s") + ", total " +
+                      number(r.impulse_total, "N s"));
+  line("work",
+       "compression " + number(r.work_compression, "J") + ", total " + number(r.work_total, "J"));
+  line("at start", std::string("cushion ") +
+                       (r.cushion_slipping_at_start ? "slipping" : "sticking") + ", table " +
+                       (r.table_slipping_at_start ? "slipping" : "sticking (rolling)"));
+  if (interpolated)
+    line("transitions", "not recorded by the table method");
+  else if (r.transition_count == 0)
+    line("transitions", "none");
+  for (int i = 0; i < r.transition_count; ++i)
+    line(i == 0 ? "transitions" : "", transition_text(r.transitions[i]));
+  if (r.status == phys::ImpactStatus::rigid_limit_exceeded)
+    out << rigid_limit_warning(params, in) << '\n';
+  else if (!phys::usable(r.status))
+    line("message", r.message);
+}
+
+void write_json(std::ostream& out, const phys::CushionParams& params, const Incidence& in,
+                const phys::ImpactOptions& options, const phys::ImpactResult& r) {
+  using nlohmann::ordered_json;
+  const double spin_unit = in.speed / params.radius;
+  const phys::Vec3& v = r.outgoing.velocity;
+  const phys::Vec3& w = r.outgoing.spin;
+
+  ordered_json transitions = ordered_json::array();
+  for (int i = 0; i < r.transition_count; ++i)
+    transitions.push_back({{"contact", phys::to_string(r.transitions[i].contact)},
+                           {"state", r.transitions[i].sticking ? "stick" : "slip"},
+                           {"impulse", r.transitions[i].impulse}});
+
+  ordered_json j;
+  j["status"] = phys::to_string(r.status);
+  j["message"] = r.message;
+  if (r.status == phys::ImpactStatus::rigid_limit_exceeded)
+    j["warning"] = rigid_limit_warning(params, in);
+  j["method"] = phys::to_string(r.method_used);
+  j["rebound_speed"] = r.rebound_speed;
+  j["rebound_angle_deg"] = r.rebound_angle_deg;
+  j["velocity"] = {v.x, v.y};
+  j["spin"] = {w.x, w.y, w.z};
+  j["impulse_compression"] = r.impulse_compression;
+  j["impulse_total"] = r.impulse_total;
+  j["work_compression"] = r.work_compression;
+  j["work_total"] = r.work_total;
+  j["slipping_at_start"] = {{"cushion", r.cushion_slipping_at_start},
+                            {"table", r.table_slipping_at_start}};
+  j["transitions"] = transitions;
+  j["transitions_recorded"] = r.method_used != phys::ImpactMethod::table;
+  j["rhs_evaluations"] = r.rhs_evaluations;
+  j["input"] = {{"speed", in.speed},
+                {"angle_deg", in.angle_deg},
+                {"topspin", in.topspin},
+                {"sidespin", in.sidespin},
+                {"topspin_k", in.topspin / spin_unit},
+                {"sidespin_k", in.sidespin / spin_unit},
+                {"method", phys::to_string(options.method)},
+                {"steps", options.paper_steps},
+                {"tolerance", options.tolerance},
+                {"mass", params.mass},
+                {"radius", params.radius},
+                {"cushion_height", params.cushion_height},
+                {"mu_cushion", params.mu_cushion},
+                {"mu_table", params.mu_table},
+                {"restitution", params.restitution},
+                {"rigid_speed_limit", params.rigid_speed_limit}};
+  j["units"] = {{"frame", "cushion: X along the cushion, Y from the ball into it, Z up"},
+                {"rebound_speed", "m/s"},
+                {"rebound_angle_deg", "deg, from +X (mirror reflection: equal to angle_deg)"},
+                {"velocity", "m/s"},
+                {"spin", "rad/s"},
+                {"impulse", "N s"},
+                {"work", "J"},
+                {"speed", "m/s"},
+                {"angle_deg", "deg"},
+                {"topspin", "rad/s"},
+                {"sidespin", "rad/s, > 0 right spin"},
+                {"mass", "kg"},
+                {"radius", "m"},
+                {"cushion_height", "m"}};
+  out << j.dump(2) << '\n';
+}
+
+}  // namespace
+
+ReboundCommand::ReboundCommand(CLI::App& parent) {
+  command_ = parent.add_subcommand(
+      "rebound",
+      "Resolve a ball-cushion impact (Mathavan, Jackson & Parkin 2010) and print the "
+      "outgoing velocity and spin.");
+  CLI::App& c = *command_;
+  const phys::CushionParams snooker;
+
+  const char* ball = "Incoming ball";
+  c.add_option("--speed", args_.speed,
+               "Incoming speed V0 (m/s), > 0. Required unless --batch is given.")
+      ->type_name("m/s")
+      ->group(ball);
+  c.add_option("--angle", args_.angle_deg,
+               "Incidence angle alpha (deg) between the velocity and the cushion, in (0, 180); "
+               "90 is head-on. Required unless --batch is given.")
+      ->type_name("deg")
+      ->group(ball);
+  auto* topspin_k = c.add_option("--topspin-k", args_.topspin_k,
+                                 "Topspin k_T = w_T R / V0 (1: natural roll, 0: stun, < 0: draw)")
+                        ->type_name("k_T")
+                        ->capture_default_str()
+                        ->group(ball);
+  auto* sidespin_k =
+      c.add_option("--sidespin-k", args_.sidespin_k, "Sidespin k_S = w_S R / V0 (> 0: right spin)")
+          ->type_name("k_S")
+          ->capture_default_str()
+          ->group(ball);
+  c.add_option("--topspin", args_.topspin,
+               "Topspin w_T (rad/s) instead of --topspin-k; V0/R is natural roll")
+      ->type_name("rad/s")
+      ->excludes(topspin_k)
+      ->group(ball);
+  c.add_option("--sidespin", args_.sidespin,
+               "Sidespin w_S (rad/s) instead of --sidespin-k; > 0 is right spin")
+      ->type_name("rad/s")
+      ->excludes(sidespin_k)
+      ->group(ball);
+
+  const char* method = "Method";
+  c.add_option("--method", args_.method,
+               "exact (adaptive integrator with stick/slip events), paper (the paper's "
+               "fixed-step scheme) or table (precomputed surrogate; falls back to exact "
+               "outside its domain)")
+      ->type_name("exact|paper|table")
+      ->capture_default_str()
+      ->group(method);
+  c.add_option("--steps", args_.steps, "paper: number of impulse steps N, >= 1")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(method);
+  c.add_option("--tolerance", args_.tolerance,
+               "exact: local error per step relative to V0, in [1e-15, 1e-2]")
+      ->type_name("TOL")
+      ->capture_default_str()
+      ->group(method);
+  c.add_option("--table-cache", args_.table_cache,
+               "table: directory for the cached table (default: $CUEPLAN_CACHE_DIR, else "
+               "$XDG_CACHE_HOME/cueplan, else ~/.cache/cueplan)")
+      ->type_name("DIR")
+      ->group(method);
+
+  // Physical parameters bind straight into CushionParams: its defaults are the help's.
+  const char* physical = "Physical parameters (snooker defaults, from the paper)";
+  c.add_option("--mass", args_.params.mass, "Ball mass M (kg), > 0")
+      ->type_name("kg")
+      ->capture_default_str()
+      ->group(physical);
+  c.add_option("--radius", args_.params.radius, "Ball radius R (m), > 0")
+      ->type_name("m")
+      ->capture_default_str()
+      ->group(physical);
+  c.add_option("--cushion-height", args_.params.cushion_height,
+               "Height h of the cushion contact above the cloth (m), in (R, 2R); default 7R/5 "
+               "of the radius in use (" +
+                   number(snooker.cushion_height) + " for the default radius)")
+      ->type_name("m")
+      ->group(physical);
+  c.add_option("--mu-cushion", args_.params.mu_cushion,
+               "Ball-cushion sliding friction mu_w, >= 0 and below tan(theta)")
+      ->type_name("mu_w")
+      ->capture_default_str()
+      ->group(physical);
+  c.add_option("--mu-table", args_.params.mu_table, "Ball-cloth sliding friction mu_s, >= 0")
+      ->type_name("mu_s")
+      ->capture_default_str()
+      ->group(physical);
+  c.add_option("--restitution", args_.params.restitution,
+               "Energetic coefficient of restitution e_e, in (0, 1]")
+      ->type_name("e_e")
+      ->capture_default_str()
+      ->group(physical);
+
+  const char* output = "Output";
+  auto* json = c.add_flag("--json", args_.json,
+                          "Print one JSON object (cushion frame, SI units) instead of text")
+                   ->group(output);
+  auto* batch =
+      c.add_option("--batch", args_.batch_file,
+                   "Resolve every row of a CSV file with header "
+                   "'speed,angle_deg,topspin_k,sidespin_k' (m/s, deg, k_T, k_S) and write CSV "
+                   "to stdout: the input columns, then rebound_speed,rebound_angle_deg,vx,vy,"
+                   "wx,wy,wz,status,message. A bad row gets its own error status.")
+          ->type_name("FILE.csv")
+          ->group(output);
+  c.add_option("--threads", args_.threads,
+               "Batch: threads to spread the rows over (0: one per core); the output is the "
+               "same for any count")
+      ->type_name("N")
+      ->capture_default_str()
+      ->needs(batch)
+      ->group(output);
+  batch->excludes(json);
+  for (const char* flag : {"--speed", "--angle", "--topspin", "--sidespin"})
+    batch->excludes(c.get_option(flag));
+
+  c.footer(
+      "Frames: the cushion frame has X along the cushion, Y from the ball into the cushion and "
+      "Z up; the rebound angle is measured from +X like alpha (a mirror reflection gives "
+      "rebound angle = alpha).\n"
+      "Normal speeds V0 sin(alpha) above 2.5 m/s are solved but flagged: the rigid-cushion "
+      "model is not trusted there.\n"
+      "Exit codes: 0 done (also when only flagged), 1 no usable result, 2 bad input.\n"
+      "Example: cueplan rebound --speed 1 --angle 45 --topspin-k 1 --sidespin-k 0");
+}
+
+bool ReboundCommand::selected() const { return command_->parsed(); }
+
+bool ReboundCommand::given(const char* flag) const { return command_->count(flag) > 0; }
+
+std::string ReboundCommand::read_options(phys::ImpactOptions* options) const {
+  if (!phys::parse_method(args_.method, &options->method))
+    return "--method must be one of exact, paper, table, got '" + args_.method + "'";
+  options->paper_steps = args_.steps;
+  options->tolerance = args_.tolerance;
+  if (std::string why = check_options(*options); !why.empty()) return why;
+  if (args_.threads < 0)
+    return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
+  return {};
+}
+
+std::string ReboundCommand::read_params(phys::CushionParams* params) const {
+  *params = args_.params;
+  // The cushion height follows the radius unless given.
+  if (!given("--cushion-height"))
+    params->cushion_height = phys::params_for_radius(params->radius).cushion_height;
+  return check_params(*params);
+}
+
+std::string ReboundCommand::read_incidence(const phys::CushionParams& params, Incidence* in) const {
+  if (!given("--speed")) return "--speed is required (m/s) unless --batch is given";
+  if (!given("--angle")) return "--angle is required (deg) unless --batch is given";
+  // Each spin comes in rad/s or as k = w R / V0, whichever flag was given.
+  const bool topspin_rad = given("--topspin");
+  const bool sidespin_rad = given("--sidespin");
+  const IncidenceNames names = {"--speed", "--angle", topspin_rad ? "--topspin" : "--topspin-k",
+                                sidespin_rad ? "--sidespin" : "--sidespin-k"};
+  const double topspin = topspin_rad ? args_.topspin : args_.topspin_k;
+  const double sidespin = sidespin_rad ? args_.sidespin : args_.sidespin_k;
+  if (std::string why = check_incidence(args_.speed, args_.angle_deg, topspin, sidespin, names);
+      !why.empty())
+    return why;
+  const double spin_unit = args_.speed / params.radius;  // rad/s per unit of k
+  *in = {args_.speed, args_.angle_deg, topspin_rad ? topspin : topspin * spin_unit,
+         sidespin_rad ? sidespin : sidespin * spin_unit};
+  return {};
+}
+
+int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
+  const auto usage = [&](const std::string& why) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  };
+
+  phys::ImpactOptions options;
+  if (std::string why = read_options(&options); !why.empty()) return usage(why);
+  phys::CushionParams params;
+  if (std::string why = read_params(&params); !why.empty()) return usage(why);
+
+  // The incoming ball(s): whole-input errors come before any table is built.
+  const bool batch = given("--batch");
+  BatchInput batch_input;
+  Incidence in;
+  if (batch) {
+    batch_input = read_batch(args_.batch_file);
+    if (!batch_input.error.empty()) return usage(batch_input.error);
+  } else if (std::string why = read_incidence(params, &in); !why.empty()) {
+    return usage(why);
+  }
+
+  // The surrogate, built or loaded once for every impact of this run.
+  std::optional<phys::ImpactTable> table;
+  if (options.method == phys::ImpactMethod::table) {
+    const std::string cache_dir =
+        args_.table_cache.empty() ? phys::default_table_cache_dir() : args_.table_cache;
+    if (std::string why = ensure_directory(cache_dir); !why.empty())
+      return usage("--table-cache: " + why);
+    std::string note;
+    std::string error;
+    table = acquire_table(params, cache_dir, args_.threads, &note, &error);
+    if (!table) {
+      err << kCommandName << ": " << error << '\n';
+      return kExitFailed;
+    }
+    if (!note.empty()) err << kCommandName << ": " << note << '\n';
+    options.table = &*table;
+  }
+
+  if (batch) {
+    write_batch(batch_input, params, options, args_.threads, out);
+    return out ? kExitOk : kExitFailed;
+  }
+
+  const phys::ImpactResult result = phys::resolve_impact(
+      params, phys::incoming_state(in.speed, in.angle_deg, in.topspin, in.sidespin), options);
+  if (result.status == phys::ImpactStatus::invalid_input)
+    return usage(with_flag_names(result.message));
+  if (args_.json)
+    write_json(out, params, in, options, result);
+  else
+    write_text(out, params, in, result);
+  return phys::usable(result.status) ? kExitOk : kExitFailed;
+}
+
+}  // namespace cueplan::cli

@@ -1,0 +1,70 @@
+// `cueplan rebound`: one ball-cushion impact (or a CSV batch of them) through
+// physics::resolve_impact, reported as text, JSON or CSV.
+#pragma once
+
+#include <cmath>
+#include <iosfwd>
+#include <string>
+
+#include "cueplan/physics/cushion_impact.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace cueplan::cli {
+
+// What the command line asked for, in the flags' units.
+struct ReboundArgs {
+  double speed = NAN;       // m/s, --speed
+  double angle_deg = NAN;   // deg, --angle
+  double topspin_k = 1.0;   // --topspin-k, k_T = w_T R / V0
+  double sidespin_k = 0.0;  // --sidespin-k, k_S = w_S R / V0
+  double topspin = 0.0;     // rad/s, --topspin (replaces --topspin-k when given)
+  double sidespin = 0.0;    // rad/s, --sidespin (replaces --sidespin-k when given)
+  std::string method = "exact";
+  int steps = 5000;          // paper scheme N
+  double tolerance = 1e-12;  // exact method
+  // --mass, --radius, --mu-cushion, --mu-table, --restitution, --cushion-height;
+  // the cushion height becomes 7R/5 of the radius unless given.
+  physics::CushionParams params;
+  bool json = false;
+  std::string batch_file;
+  int threads = 0;          // batch threads; 0: one per core
+  std::string table_cache;  // empty: physics::default_table_cache_dir()
+};
+
+// One incoming ball as resolved from the flags.
+struct Incidence {
+  double speed = 0.0;      // m/s, V0
+  double angle_deg = 0.0;  // deg, alpha
+  double topspin = 0.0;    // rad/s, w_T
+  double sidespin = 0.0;   // rad/s, w_S
+};
+
+class ReboundCommand {
+ public:
+  // Registers `rebound` and its flags on `parent`; the flags write into this object,
+  // so it must outlive the parse and stay where it is.
+  explicit ReboundCommand(CLI::App& parent);
+  ReboundCommand(const ReboundCommand&) = delete;
+  ReboundCommand& operator=(const ReboundCommand&) = delete;
+
+  bool selected() const;
+
+  // Runs the parsed command; returns an ExitCode.
+  int run(std::ostream& out, std::ostream& err) const;
+
+ private:
+  bool given(const char* flag) const;
+
+  // Stages of run(), in order; each returns empty or the one-line reason to stop.
+  std::string read_options(physics::ImpactOptions* options) const;
+  std::string read_params(physics::CushionParams* params) const;
+  std::string read_incidence(const physics::CushionParams& params, Incidence* in) const;
+
+  CLI::App* command_ = nullptr;
+  ReboundArgs args_;
+};
+
+}  // namespace cueplan::cli

@@ -1,0 +1,96 @@
+// Time per simulated shot, from the cue strike to rest, for one-, two- and
+// three-cushion shots with and without obstacles, with the impact table and with
+// the exact impact method.
+//
+// Each benchmark cycles through 256 shots near a base shot (seeded jitter of aim,
+// speed and spin), so a run does not time one lucky path.
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/physics/shot.hpp"
+
+namespace {
+
+using namespace cueplan::physics;
+
+struct Case {
+  const char* name;
+  Shot base;
+  int cushions;  // the route the base shot takes
+};
+
+// Base shots from (0.8, 0.5) on a snooker table without pockets.
+const Case kCases[] = {
+    {"one_cushion", {1.6, 60.0, 0.5, 0.0}, 1},
+    {"two_cushions", {2.6, 30.0, 1.0, 0.5}, 2},
+    {"three_cushions", {3.4, 15.0, 1.0, 1.0}, 3},
+};
+
+Scene scene(bool with_obstacles) {
+  Scene s;  // no pockets: every shot comes to rest
+  if (with_obstacles) s.obstacles = {{2.8, 0.35}, {0.6, 1.4}, {3.2, 1.55}, {1.9, 1.0}};
+  return s;
+}
+
+const ImpactTable& table() {
+  static const ImpactTable t =
+      ImpactTable::load_or_build(CushionParams{}, ImpactTableOptions{}, default_table_cache_dir());
+  return t;
+}
+
+std::vector<Shot> jittered(const Shot& base) {
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Shot> shots;
+  for (int i = 0; i < 256; ++i)
+    shots.push_back({base.speed * (1 + 0.01 * u(rng)), base.aim_deg + 0.2 * u(rng),
+                     base.topspin_k + 0.02 * u(rng), base.sidespin_k + 0.02 * u(rng)});
+  return shots;
+}
+
+void BM_Shot(benchmark::State& state, int which, bool obstacles, bool use_table) {
+  const Case& c = kCases[which];
+  const Scene s = scene(obstacles);
+  SimulationOptions o;
+  o.record_path = false;
+  if (use_table) {
+    o.impact_method = ImpactMethod::table;
+    o.table = &table();
+    o.impact_accuracy = 1e-5;  // the table's measured accuracy class
+  }
+  const std::vector<Shot> shots = jittered(c.base);
+  double cushions = 0.0;
+  for (const Shot& shot : shots) cushions += simulate(s, {0.8, 0.5}, shot, o).cushion_hits;
+  size_t i = 0;
+  for (auto _ : state) {
+    const ShotResult r = simulate(s, {0.8, 0.5}, shots[i], o);
+    benchmark::DoNotOptimize(r.final_position);
+    if (++i == shots.size()) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["mean_cushions"] = cushions / static_cast<double>(shots.size());
+}
+
+void register_all() {
+  for (int which = 0; which < 3; ++which)
+    for (bool obstacles : {false, true})
+      for (bool use_table : {true, false}) {
+        std::string name = std::string("BM_Shot/") + kCases[which].name +
+                           (obstacles ? "/obstacles" : "/open") +
+                           (use_table ? "/table" : "/exact");
+        benchmark::RegisterBenchmark(name.c_str(), BM_Shot, which, obstacles, use_table);
+      }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
