@@ -1,10 +1,1011 @@
-// PLACEHOLDER while the surrogate is written: covers nothing, so resolve_impact
-// answers table requests with the exact method.
+// The `table` method: tricubic interpolation of the exact method's scaled outcome,
+// with every cell's error measured at build time (see impact_table.hpp).
+//
+// Build stages, each run on the build threads:
+//   1. per alpha node: the exact outcome at the nodes, and at the test points in
+//      that alpha plane (centres of the cell faces normal to alpha);
+//   2. per alpha slab of cells: the exact outcome at the other test points (cell
+//      centres, faces normal to k_T and k_S), then each cell's stencil or fallback;
+//   3, 4. the same on the natural-roll plane k_T = 1 (nodes and edge midpoints in
+//      each alpha line, then centres and the other edge midpoints per slab).
 #include "cueplan/physics/impact_table.hpp"
 
+#include <algorithm>
+#include <atomic>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <thread>
+
+#include "impact_model.hpp"
+
 namespace cueplan::physics {
-std::string ImpactTableOptions::validate() const { return {}; }
-bool ImpactTable::resolve(const CushionParams&, const BallState&, ImpactResult*) const {
-  return false;
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Scaled outcome (V0 = 1): velocities / V0, spins * R / V0, impulses / (M V0), work
+// / (M V0^2). Two parts of it follow exactly from the rest and the incoming state,
+// so nodes store only seven numbers:
+//   eqs. (14a), (14d), (14e): d(o_y) = -((1 + s) / c) d(o_z) - 5/2 d(u_x);
+//   eq. (16b): W_total = (1 - e^2) W_c.
+enum Stored : int { kUx = 0, kUy, kOx, kOz, kPc, kPt, kWc, kStored };
+
+struct Outcome {
+  double ux = 0.0, uy = 0.0, ox = 0.0, oy = 0.0, oz = 0.0;
+  double pc = 0.0, pt = 0.0, wc = 0.0, wt = 0.0;
+};
+
+// The full outcome from the stored numbers, for incidence cos(alpha) = ca and spins
+// (kt, ks) (alpha <= 90, unmirrored).
+Outcome expand(const double q[kStored], double ca, double kt, double ks, double spin_coupling,
+               double work_ratio) {
+  Outcome o;
+  o.ux = q[kUx];
+  o.uy = q[kUy];
+  o.ox = q[kOx];
+  o.oz = q[kOz];
+  o.oy = kt * ca - spin_coupling * (q[kOz] - ks) - 2.5 * (q[kUx] - ca);
+  o.pc = q[kPc];
+  o.pt = q[kPt];
+  o.wc = q[kWc];
+  o.wt = work_ratio * q[kWc];
+  return o;
 }
+
+// Per-cell stencil code: shifts (-1, 0, +1) along alpha, k_T, k_S as base-3 digits
+// (the natural-roll plane uses the codes with no k_T shift).
+constexpr int kStencils = 27;
+constexpr int kCentred = 13;
+constexpr uint8_t kFallback = 255;
+int stencil_shift(int code, int axis) {
+  const int digit = axis == 0 ? code / 9 : (axis == 1 ? code / 3 % 3 : code % 3);
+  return digit - 1;
+}
+
+// Node values come from the exact method at its default tolerance (error ~1e-11).
+constexpr double kNodeTolerance = 1e-12;
+// A state is of paper form when its spin about the horizontal axis along the
+// motion is below this, in units of V0 / R.
+constexpr double kPaperFormTolerance = 1e-9;
+// A state is in natural roll when |k_T - 1| is below this. The outcome varies like
+// d log d in d = k_T - 1, so taking such a state as k_T = 1 errs by ~1e-9.
+constexpr double kRollTolerance = 1e-10;
+// Slack on the domain's edges, relative to k_max.
+constexpr double kEdgeSlack = 1e-12;
+// Same dimensionless parameters: relative difference below this.
+constexpr double kParamsTolerance = 1e-12;
+
+bool close(double a, double b) {
+  return std::abs(a - b) <= kParamsTolerance * std::max(std::abs(a), std::abs(b)) + 1e-300;
+}
+
+// Cubic Lagrange weights of nodes 0..3 at position u (in node spacings from node 0).
+void lagrange_weights(double u, double w[4]) {
+  const double a = u, b = u - 1.0, c = u - 2.0, d = u - 3.0;
+  w[0] = -b * c * d / 6.0;
+  w[1] = a * c * d / 2.0;
+  w[2] = -a * b * d / 2.0;
+  w[3] = a * b * c / 6.0;
+}
+
+// The exact method's stored outcome for V0 = 1; at alpha = 0 its limit (the ball
+// passes unchanged). NaN when the exact method gave no usable answer, which makes
+// every cell that needs the value fall back.
+void exact_stored(const CushionParams& params, double alpha_deg, double kt, double ks,
+                  double out[kStored]) {
+  if (alpha_deg == 0.0) {
+    out[kUx] = 1.0;
+    out[kUy] = 0.0;
+    out[kOx] = 0.0;
+    out[kOz] = ks;
+    out[kPc] = out[kPt] = out[kWc] = 0.0;
+    return;
+  }
+  ImpactOptions options;
+  options.tolerance = kNodeTolerance;
+  const ImpactResult r =
+      resolve_impact(params, incoming_state_k(1.0, alpha_deg, kt, ks, params.radius), options);
+  if (!usable(r.status)) {
+    std::fill(out, out + kStored, kNaN);
+    return;
+  }
+  out[kUx] = r.outgoing.velocity.x;
+  out[kUy] = r.outgoing.velocity.y;
+  out[kOx] = r.outgoing.spin.x * params.radius;
+  out[kOz] = r.outgoing.spin.z * params.radius;
+  out[kPc] = r.impulse_compression / params.mass;
+  out[kPt] = r.impulse_total / params.mass;
+  out[kWc] = r.work_compression / params.mass;
+}
+
+double rebound_angle(const Outcome& q) { return std::atan2(-q.uy, q.ux); }
+
+// Errors of one interpolated outcome against the exact one, or the largest over
+// several points.
+struct PointError {
+  double speed = 0.0, angle_deg = 0.0, state = 0.0, impulse = 0.0;
+
+  bool unusable() const { return std::isnan(speed + angle_deg + state + impulse); }
+  void include(const PointError& e) {
+    if (e.unusable()) speed = kNaN;  // an unusable point spoils the cell
+    if (unusable()) return;
+    speed = std::max(speed, e.speed);
+    angle_deg = std::max(angle_deg, e.angle_deg);
+    state = std::max(state, e.state);
+    impulse = std::max(impulse, e.impulse);
+  }
+};
+
+PointError point_error(const Outcome& q, const Outcome& x) {
+  PointError e;
+  e.speed = std::abs(std::sqrt(q.ux * q.ux + q.uy * q.uy) - std::sqrt(x.ux * x.ux + x.uy * x.uy));
+  e.angle_deg = std::abs(rebound_angle(q) - rebound_angle(x)) / kDegree;
+  for (double d : {q.ux - x.ux, q.uy - x.uy, q.ox - x.ox, q.oy - x.oy, q.oz - x.oz})
+    e.state = std::max(e.state, std::abs(d));
+  for (double d : {q.pc - x.pc, q.pt - x.pt, q.wc - x.wc, q.wt - x.wt})
+    e.impulse = std::max(e.impulse, std::abs(d));
+  return e;
+}
+
+// Test points of a cell, in its local coordinates: the centre and the face centres.
+constexpr int kTestPoints = 7;
+constexpr double kTestLocal[kTestPoints][3] = {{0.5, 0.5, 0.5}, {0.0, 0.5, 0.5}, {1.0, 0.5, 0.5},
+                                               {0.5, 0.0, 0.5}, {0.5, 1.0, 0.5}, {0.5, 0.5, 0.0},
+                                               {0.5, 0.5, 1.0}};
+// Test points of a cell of the natural-roll plane: its centre and edge midpoints.
+constexpr int kRollTestPoints = 5;
+constexpr double kRollTestLocal[kRollTestPoints][2] = {
+    {0.5, 0.5}, {0.0, 0.5}, {1.0, 0.5}, {0.5, 0.0}, {0.5, 1.0}};
+
+// FNV-1a, for the file checksum and the cache name.
+uint64_t fnv1a(const void* data, size_t size, uint64_t h = 1469598103934665603ULL) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < size; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+// File format: magic, version, endianness mark, options, params, measured error,
+// array sizes, arrays, FNV-1a checksum of everything before it.
+constexpr char kMagic[8] = {'C', 'U', 'E', 'P', 'T', 'B', 'L', '\0'};
+constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kEndianMark = 0x01020304u;
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& value) {
+    put_bytes(&value, sizeof value);
+  }
+  void put_bytes(const void* data, size_t size) {
+    const auto* p = static_cast<const char*>(data);
+    bytes_.insert(bytes_.end(), p, p + size);
+  }
+  std::vector<char>& bytes() { return bytes_; }
+
+ private:
+  std::vector<char> bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::vector<char>& bytes, size_t end) : bytes_(bytes), end_(end) {}
+  template <class T>
+  bool get(T* value) {
+    return get_bytes(value, sizeof *value);
+  }
+  bool get_bytes(void* out, size_t size) {
+    if (size > end_ - pos_) return false;
+    std::memcpy(out, bytes_.data() + pos_, size);
+    pos_ += size;
+    return true;
+  }
+  size_t remaining() const { return end_ - pos_; }
+
+ private:
+  const std::vector<char>& bytes_;
+  size_t end_;
+  size_t pos_ = 0;
+};
+
+// Runs work(i, thread) for i in [0, count) on `threads` threads (this one included).
+template <class Work>
+void parallel_for(int threads, int count, Work&& work) {
+  std::atomic<int> next{0};
+  auto worker = [&](int id) {
+    for (int i = next++; i < count; i = next++) work(i, id);
+  };
+  std::vector<std::thread> pool;
+  for (int id = 1; id < threads; ++id) pool.emplace_back(worker, id);
+  worker(0);
+  for (std::thread& th : pool) th.join();
+}
+
+}  // namespace
+
+// Build and file code with access to the table's layout.
+class ImpactTableAccess {
+ public:
+  static void lay_out(ImpactTable* t);
+  static ImpactTable build(const CushionParams& params, const ImpactTableOptions& options);
+  static bool save(const ImpactTable& t, const std::string& path);
+  static std::optional<ImpactTable> load(const std::string& path);
+  static bool same_shape(const ImpactTableOptions& a, const ImpactTableOptions& b) {
+    return a.alpha_nodes == b.alpha_nodes && a.topspin_nodes == b.topspin_nodes &&
+           a.sidespin_nodes == b.sidespin_nodes && a.roll_alpha_nodes == b.roll_alpha_nodes &&
+           a.roll_sidespin_nodes == b.roll_sidespin_nodes && a.k_max == b.k_max &&
+           a.cell_tolerance == b.cell_tolerance;
+  }
+};
+
+std::string ImpactTableOptions::validate() const {
+  char buf[200];
+  auto fail = [&](const char* field, const char* rule, double value) {
+    std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field, rule, value);
+    return std::string(buf);
+  };
+  if (alpha_nodes < 4) return fail("alpha_nodes", "must be at least 4", alpha_nodes);
+  if (topspin_nodes < 4) return fail("topspin_nodes", "must be at least 4", topspin_nodes);
+  if (sidespin_nodes < 4) return fail("sidespin_nodes", "must be at least 4", sidespin_nodes);
+  if (roll_alpha_nodes < 4) return fail("roll_alpha_nodes", "must be at least 4", roll_alpha_nodes);
+  if (roll_sidespin_nodes < 4)
+    return fail("roll_sidespin_nodes", "must be at least 4", roll_sidespin_nodes);
+  if (!std::isfinite(k_max) || !(k_max > 0.0))
+    return fail("k_max", "must be positive and finite", k_max);
+  if (k_max > 1.0 && topspin_nodes < 7)
+    return fail("topspin_nodes",
+                "must be at least 7 when k_max > 1: a node sits on k_T = 1 with a cubic "
+                "stencil either side",
+                topspin_nodes);
+  if (!std::isfinite(cell_tolerance) || !(cell_tolerance > 0.0))
+    return fail("cell_tolerance", "must be positive and finite", cell_tolerance);
+  if (threads < 0) return fail("threads", "must not be negative (0: all cores)", threads);
+  const double nodes = static_cast<double>(alpha_nodes) * topspin_nodes * sidespin_nodes +
+                       static_cast<double>(roll_alpha_nodes) * roll_sidespin_nodes;
+  if (nodes > 1e8) return fail("alpha_nodes", "times the other node counts is too large", nodes);
+  return {};
+}
+
+// --- Axis ---------------------------------------------------------------------
+
+ImpactTable::Axis ImpactTable::Axis::uniform(int nodes, double lo, double hi) {
+  Axis a;
+  a.nodes = nodes;
+  a.lo = lo;
+  a.hi = hi;
+  a.kink = hi;
+  a.step_low = a.step_high = (hi - lo) / (nodes - 1);
+  a.inv_step_low = a.inv_step_high = 1.0 / a.step_low;
+  return a;
+}
+
+ImpactTable::Axis ImpactTable::Axis::with_kink(int nodes, double lo, double kink, double hi) {
+  const int cells = nodes - 1;
+  const long below = std::lround(cells * (kink - lo) / (hi - lo));
+  Axis a;
+  a.nodes = nodes;
+  a.kink_node = static_cast<int>(std::clamp<long>(below, 3, cells - 3));
+  a.lo = lo;
+  a.kink = kink;
+  a.hi = hi;
+  a.step_low = (kink - lo) / a.kink_node;
+  a.step_high = (hi - kink) / (cells - a.kink_node);
+  a.inv_step_low = 1.0 / a.step_low;
+  a.inv_step_high = 1.0 / a.step_high;
+  return a;
+}
+
+double ImpactTable::Axis::node(int i) const {
+  if (i == nodes - 1) return hi;
+  if (kink_node < 0 || i < kink_node) return lo + i * step_low;
+  if (i == kink_node) return kink;
+  return kink + (i - kink_node) * step_high;
+}
+
+int ImpactTable::Axis::cell_of(double x, double* local) const {
+  double u;
+  int first, last;  // cells of the piece
+  if (kink_node < 0 || x < kink) {
+    u = (x - lo) * inv_step_low;
+    first = 0;
+    last = (kink_node < 0 ? nodes : kink_node + 1) - 2;
+  } else {
+    u = kink_node + (x - kink) * inv_step_high;
+    first = kink_node;
+    last = nodes - 2;
+  }
+  const int cell = std::clamp(static_cast<int>(std::floor(u)), first, last);
+  *local = u - cell;
+  return cell;
+}
+
+int ImpactTable::Axis::stencil_start(int cell, int shift) const {
+  int first = 0, last = nodes - 1;  // nodes of the cell's piece
+  if (kink_node >= 0) {
+    if (cell < kink_node)
+      last = kink_node;
+    else
+      first = kink_node;
+  }
+  return std::clamp(cell - 1 + shift, first, last - 3);
+}
+
+// --- Interpolation --------------------------------------------------------------
+
+namespace {
+
+// One row of four nodes along k_S, weighted: acc += sum_k w[k] * row[k].
+inline void add_row(const double* row, double scale, const double w[4], double acc[kStored]) {
+  const double a0 = scale * w[0], a1 = scale * w[1], a2 = scale * w[2], a3 = scale * w[3];
+  for (int q = 0; q < kStored; ++q)
+    acc[q] +=
+        a0 * row[q] + a1 * row[kStored + q] + a2 * row[2 * kStored + q] + a3 * row[3 * kStored + q];
+}
+
+}  // namespace
+
+void ImpactTable::interpolate(const int cell[3], const double local[3], int stencil,
+                              double* out) const {
+  int start[3];
+  double w[3][4];
+  for (int a = 0; a < 3; ++a) {
+    start[a] = axes_[a].stencil_start(cell[a], stencil_shift(stencil, a));
+    lagrange_weights(cell[a] - start[a] + local[a], w[a]);
+  }
+  const size_t nt = static_cast<size_t>(axes_[1].nodes), ns = static_cast<size_t>(axes_[2].nodes);
+  const double* rows[16];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      rows[4 * i + j] = &nodes_[(((start[0] + i) * nt + start[1] + j) * ns + start[2]) * kStored];
+  // Ask for every cache line of the sixteen rows at once: in a table larger than
+  // the cache each is a miss, and they overlap only when requested together.
+  for (const double* row : rows) {
+    for (int b = 0; b < 4 * kStored; b += 8) __builtin_prefetch(row + b);
+    __builtin_prefetch(row + 4 * kStored - 1);
+  }
+  double acc[kStored] = {};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) add_row(rows[4 * i + j], w[0][i] * w[1][j], w[2], acc);
+  std::copy(acc, acc + kStored, out);
+}
+
+void ImpactTable::interpolate_roll(const int cell[2], const double local[2], int stencil,
+                                   double* out) const {
+  int start[2];
+  double w[2][4];
+  for (int a = 0; a < 2; ++a) {
+    start[a] = roll_axes_[a].stencil_start(cell[a], stencil_shift(stencil, 2 * a));
+    lagrange_weights(cell[a] - start[a] + local[a], w[a]);
+  }
+  const size_t ns = static_cast<size_t>(roll_axes_[1].nodes);
+  double acc[kStored] = {};
+  for (int i = 0; i < 4; ++i)
+    add_row(&roll_nodes_[((start[0] + i) * ns + start[1]) * kStored], w[0][i], w[1], acc);
+  std::copy(acc, acc + kStored, out);
+}
+
+// --- Build ----------------------------------------------------------------------
+
+void ImpactTableAccess::lay_out(ImpactTable* t) {
+  const ImpactTableOptions& o = t->options_;
+  t->axes_[0] = ImpactTable::Axis::uniform(o.alpha_nodes, 0.0, 90.0);
+  t->axes_[1] = o.k_max > 1.0
+                    ? ImpactTable::Axis::with_kink(o.topspin_nodes, -o.k_max, 1.0, o.k_max)
+                    : ImpactTable::Axis::uniform(o.topspin_nodes, -o.k_max, o.k_max);
+  t->axes_[2] = ImpactTable::Axis::uniform(o.sidespin_nodes, -o.k_max, o.k_max);
+  t->has_roll_plane_ = o.k_max >= 1.0;
+  t->roll_axes_[0] = ImpactTable::Axis::uniform(o.roll_alpha_nodes, 0.0, 90.0);
+  t->roll_axes_[1] = ImpactTable::Axis::uniform(o.roll_sidespin_nodes, -o.k_max, o.k_max);
+  const CushionParams& p = t->params_;
+  t->sin_theta_ = p.sin_theta();
+  t->cos_theta_ = p.cos_theta();
+  t->spin_coupling_ = (1.0 + t->sin_theta_) / p.cos_theta();
+  t->work_ratio_ = 1.0 - p.restitution * p.restitution;
+}
+
+namespace {
+
+// How far over the tolerance an error is (see ImpactTableOptions::cell_tolerance):
+// <= 1 passes; NaN for an unusable point.
+double excess(const PointError& e, double tolerance) {
+  if (e.unusable()) return kNaN;
+  return std::max({e.speed / tolerance, e.angle_deg / (100.0 * tolerance),
+                   std::max(e.state, e.impulse) / (10.0 * tolerance)});
+}
+
+// The stencil of a cell: the centred one when its measured error passes, else the
+// candidate with the smallest; kFallback when that does not pass either.
+// error_of(code, cutoff) measures one stencil at the cell's test points, and may
+// stop early once the excess is above `cutoff` (such a stencil is not chosen).
+template <class ErrorOf>
+uint8_t choose_stencil(bool roll_plane, double tolerance, ErrorOf&& error_of, PointError* error) {
+  int best = kCentred;
+  PointError best_error = error_of(kCentred, INFINITY);
+  double best_excess = excess(best_error, tolerance);
+  if (!(best_excess <= 1.0)) {
+    for (int s = 0; s < kStencils; ++s) {
+      if (s == kCentred || (roll_plane && stencil_shift(s, 1) != 0)) continue;
+      const double cutoff = std::isnan(best_excess) ? INFINITY : best_excess;
+      const PointError e = error_of(s, cutoff);
+      const double now = excess(e, tolerance);
+      if (now < best_excess || (std::isnan(best_excess) && !std::isnan(now))) {
+        best = s;
+        best_error = e;
+        best_excess = now;
+      }
+    }
+  }
+  *error = best_error;
+  return best_excess <= 1.0 ? static_cast<uint8_t>(best) : kFallback;
+}
+
+// What one build thread found.
+struct Tally {
+  PointError worst;
+  int64_t fallback = 0;
+  int64_t roll_fallback = 0;
+  int64_t test_points = 0;
+};
+
+}  // namespace
+
+ImpactTable ImpactTableAccess::build(const CushionParams& params,
+                                     const ImpactTableOptions& options) {
+  ImpactTable t;
+  t.options_ = options;
+  t.params_ = params;
+  if (!options.validate().empty() || !params.validate().empty()) return t;
+  lay_out(&t);
+
+  // The exact method on the ball of these params at V0 = 1, never flagged.
+  CushionParams exact_params = params;
+  exact_params.rigid_speed_limit = DBL_MAX;
+  auto exact = [&](double alpha, double kt, double ks, double* out) {
+    exact_stored(exact_params, alpha, kt, ks, out);
+  };
+  const double tolerance = options.cell_tolerance;
+  const double coupling = t.spin_coupling_, work_ratio = t.work_ratio_;
+
+  const ImpactTable::Axis* axes = t.axes_;
+  const int na = axes[0].nodes, nt = axes[1].nodes, ns = axes[2].nodes;
+  const size_t plane_nodes = static_cast<size_t>(nt) * ns;
+  const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
+  t.nodes_.assign(na * plane_nodes * kStored, kNaN);
+  t.cell_stencil_.assign((na - 1) * plane_cells, kFallback);
+
+  int threads =
+      options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::max(threads, 1);
+  std::vector<Tally> tallies(threads);
+
+  auto mid = [](const ImpactTable::Axis& axis, int i) {
+    return 0.5 * (axis.node(i) + axis.node(i + 1));
+  };
+  auto at = [](const ImpactTable::Axis& axis, int i, double local) {
+    return axis.node(i) + local * (axis.node(i + 1) - axis.node(i));
+  };
+
+  // Stage 1.
+  std::vector<double> alpha_faces(na * plane_cells * kStored);
+  parallel_for(threads, na, [&](int ia, int id) {
+    const double alpha = axes[0].node(ia);
+    for (int it = 0; it < nt; ++it)
+      for (int is = 0; is < ns; ++is)
+        exact(alpha, axes[1].node(it), axes[2].node(is),
+              &t.nodes_[(ia * plane_nodes + it * ns + is) * kStored]);
+    for (int it = 0; it < nt - 1; ++it)
+      for (int is = 0; is < ns - 1; ++is)
+        exact(alpha, mid(axes[1], it), mid(axes[2], is),
+              &alpha_faces[(ia * plane_cells + it * (ns - 1) + is) * kStored]);
+    tallies[id].test_points += static_cast<int64_t>(plane_cells);
+  });
+
+  // Stage 2.
+  parallel_for(threads, na - 1, [&](int ia, int id) {
+    Tally& tally = tallies[id];
+    const double alpha = mid(axes[0], ia);
+    // Exact values at the centres (it, is), k_T faces (node it, mid is) and k_S
+    // faces (mid it, node is) of this slab.
+    std::vector<double> centres(plane_cells * kStored), topspin_faces(nt * (ns - 1) * kStored),
+        sidespin_faces((nt - 1) * ns * kStored);
+    for (int it = 0; it < nt; ++it) {
+      for (int is = 0; is < ns; ++is) {
+        if (it < nt - 1 && is < ns - 1)
+          exact(alpha, mid(axes[1], it), mid(axes[2], is),
+                &centres[(it * (ns - 1) + is) * kStored]);
+        if (is < ns - 1)
+          exact(alpha, axes[1].node(it), mid(axes[2], is),
+                &topspin_faces[(it * (ns - 1) + is) * kStored]);
+        if (it < nt - 1)
+          exact(alpha, mid(axes[1], it), axes[2].node(is),
+                &sidespin_faces[(it * ns + is) * kStored]);
+      }
+    }
+    tally.test_points += static_cast<int64_t>(plane_cells + nt * (ns - 1) + (nt - 1) * ns);
+
+    for (int it = 0; it < nt - 1; ++it) {
+      for (int is = 0; is < ns - 1; ++is) {
+        const int cell[3] = {ia, it, is};
+        const size_t in_plane = it * (ns - 1) + is;
+        const double* exact_at[kTestPoints] = {
+            &centres[in_plane * kStored],
+            &alpha_faces[(ia * plane_cells + in_plane) * kStored],
+            &alpha_faces[((ia + 1) * plane_cells + in_plane) * kStored],
+            &topspin_faces[in_plane * kStored],
+            &topspin_faces[((it + 1) * (ns - 1) + is) * kStored],
+            &sidespin_faces[(it * ns + is) * kStored],
+            &sidespin_faces[(it * ns + is + 1) * kStored]};
+        Outcome truth[kTestPoints];
+        double cos_alpha[kTestPoints], kt[kTestPoints], ks[kTestPoints];
+        for (int p = 0; p < kTestPoints; ++p) {
+          cos_alpha[p] = std::cos(at(axes[0], ia, kTestLocal[p][0]) * kDegree);
+          kt[p] = at(axes[1], it, kTestLocal[p][1]);
+          ks[p] = at(axes[2], is, kTestLocal[p][2]);
+          truth[p] = expand(exact_at[p], cos_alpha[p], kt[p], ks[p], coupling, work_ratio);
+        }
+        auto error_of = [&](int stencil, double cutoff) {
+          PointError e;
+          double q[kStored];
+          for (int p = 0; p < kTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
+            t.interpolate(cell, kTestLocal[p], stencil, q);
+            e.include(
+                point_error(expand(q, cos_alpha[p], kt[p], ks[p], coupling, work_ratio), truth[p]));
+          }
+          return e;
+        };
+        PointError e;
+        const uint8_t code = choose_stencil(false, tolerance, error_of, &e);
+        t.cell_stencil_[ia * plane_cells + in_plane] = code;
+        if (code == kFallback)
+          ++tally.fallback;
+        else
+          tally.worst.include(e);
+      }
+    }
+  });
+  alpha_faces = {};
+
+  // Stages 3 and 4: the natural-roll plane.
+  if (t.has_roll_plane_) {
+    const ImpactTable::Axis* roll = t.roll_axes_;
+    const int ra = roll[0].nodes, rs = roll[1].nodes;
+    t.roll_nodes_.assign(static_cast<size_t>(ra) * rs * kStored, kNaN);
+    t.roll_stencil_.assign(static_cast<size_t>(ra - 1) * (rs - 1), kFallback);
+    std::vector<double> alpha_edges(static_cast<size_t>(ra) * (rs - 1) * kStored);
+    parallel_for(threads, ra, [&](int ia, int id) {
+      const double alpha = roll[0].node(ia);
+      for (int is = 0; is < rs; ++is)
+        exact(alpha, 1.0, roll[1].node(is), &t.roll_nodes_[(ia * rs + is) * kStored]);
+      for (int is = 0; is < rs - 1; ++is)
+        exact(alpha, 1.0, mid(roll[1], is), &alpha_edges[(ia * (rs - 1) + is) * kStored]);
+      tallies[id].test_points += rs - 1;
+    });
+    parallel_for(threads, ra - 1, [&](int ia, int id) {
+      Tally& tally = tallies[id];
+      const double alpha = mid(roll[0], ia);
+      std::vector<double> centres((rs - 1) * kStored), sidespin_edges(rs * kStored);
+      for (int is = 0; is < rs; ++is) {
+        if (is < rs - 1) exact(alpha, 1.0, mid(roll[1], is), &centres[is * kStored]);
+        exact(alpha, 1.0, roll[1].node(is), &sidespin_edges[is * kStored]);
+      }
+      tally.test_points += 2 * rs - 1;
+      for (int is = 0; is < rs - 1; ++is) {
+        const int cell[2] = {ia, is};
+        const double* exact_at[kRollTestPoints] = {
+            &centres[is * kStored], &alpha_edges[(ia * (rs - 1) + is) * kStored],
+            &alpha_edges[((ia + 1) * (rs - 1) + is) * kStored], &sidespin_edges[is * kStored],
+            &sidespin_edges[(is + 1) * kStored]};
+        Outcome truth[kRollTestPoints];
+        double cos_alpha[kRollTestPoints], ks[kRollTestPoints];
+        for (int p = 0; p < kRollTestPoints; ++p) {
+          cos_alpha[p] = std::cos(at(roll[0], ia, kRollTestLocal[p][0]) * kDegree);
+          ks[p] = at(roll[1], is, kRollTestLocal[p][1]);
+          truth[p] = expand(exact_at[p], cos_alpha[p], 1.0, ks[p], coupling, work_ratio);
+        }
+        auto error_of = [&](int stencil, double cutoff) {
+          PointError e;
+          double q[kStored];
+          for (int p = 0; p < kRollTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
+            t.interpolate_roll(cell, kRollTestLocal[p], stencil, q);
+            e.include(
+                point_error(expand(q, cos_alpha[p], 1.0, ks[p], coupling, work_ratio), truth[p]));
+          }
+          return e;
+        };
+        PointError e;
+        const uint8_t code = choose_stencil(true, tolerance, error_of, &e);
+        t.roll_stencil_[ia * (rs - 1) + is] = code;
+        if (code == kFallback)
+          ++tally.roll_fallback;
+        else
+          tally.worst.include(e);
+      }
+    });
+  }
+
+  ImpactTableError& err = t.error_;
+  err.cells = static_cast<int64_t>(t.cell_stencil_.size());
+  err.roll_cells = static_cast<int64_t>(t.roll_stencil_.size());
+  for (const Tally& tally : tallies) {
+    err.max_speed_relative = std::max(err.max_speed_relative, tally.worst.speed);
+    err.max_angle_deg = std::max(err.max_angle_deg, tally.worst.angle_deg);
+    err.max_state_relative = std::max(err.max_state_relative, tally.worst.state);
+    err.max_impulse_relative = std::max(err.max_impulse_relative, tally.worst.impulse);
+    err.fallback_cells += tally.fallback;
+    err.roll_fallback_cells += tally.roll_fallback;
+    err.test_points += tally.test_points;
+  }
+  return t;
+}
+
+ImpactTable ImpactTable::build(const CushionParams& params, const ImpactTableOptions& options) {
+  return ImpactTableAccess::build(params, options);
+}
+
+double ImpactTable::fallback_fraction() const {
+  if (error_.cells == 0) return 1.0;
+  return static_cast<double>(error_.fallback_cells) / static_cast<double>(error_.cells);
+}
+
+double ImpactTable::roll_fallback_fraction() const {
+  if (error_.roll_cells == 0) return 1.0;
+  return static_cast<double>(error_.roll_fallback_cells) / static_cast<double>(error_.roll_cells);
+}
+
+bool ImpactTable::covers(const CushionParams& params) const {
+  return !empty() && close(params.sin_theta(), sin_theta_) &&
+         close(params.mu_cushion, params_.mu_cushion) && close(params.mu_table, params_.mu_table) &&
+         close(params.restitution, params_.restitution);
+}
+
+// --- Query ----------------------------------------------------------------------
+
+bool ImpactTable::resolve(const CushionParams& params, const BallState& incoming,
+                          ImpactResult* result) const {
+  const Vec3& v = incoming.velocity;
+  const Vec3& w = incoming.spin;
+  if (result == nullptr || !covers(params)) return false;
+  if (!std::isfinite(params.radius) || !(params.radius > 0.0) || !std::isfinite(params.mass) ||
+      !(params.mass > 0.0) || std::isnan(params.rigid_speed_limit))
+    return false;
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || v.z != 0.0 || !(v.y > 0.0) || !is_finite(w))
+    return false;
+
+  // Section 3.1 read backwards: speed, incidence and the dimensionless spins.
+  const double speed = std::sqrt(v.x * v.x + v.y * v.y);
+  const double ca = v.x / speed, sa = v.y / speed;
+  const double spin_scale = params.radius / speed;  // rad/s -> multiples of V0 / R
+  const double along = (w.x * ca + w.y * sa) * spin_scale;
+  if (!(std::abs(along) <= kPaperFormTolerance)) return false;
+  const double kt = (w.y * ca - w.x * sa) * spin_scale;
+  // alpha > 90 mirrors alpha < 90 with the sidespin reversed.
+  const bool mirrored = v.x < 0.0;
+  const double ks = (mirrored ? -w.z : w.z) * spin_scale;
+  const double k_max = options_.k_max;
+  const double k_edge = k_max * (1.0 + kEdgeSlack);
+  if (!(std::abs(kt) <= k_edge) || !(std::abs(ks) <= k_edge)) return false;
+  const double alpha = std::atan2(v.y, std::abs(v.x)) / kDegree;
+  const double ks_in = std::clamp(ks, -k_max, k_max);
+
+  // Interpolate on the natural-roll plane when k_T = 1, else in the volume.
+  double stored[kStored];
+  if (has_roll_plane_ && std::abs(kt - 1.0) <= kRollTolerance) {
+    int cell[2];
+    double local[2];
+    cell[0] = roll_axes_[0].cell_of(alpha, &local[0]);
+    cell[1] = roll_axes_[1].cell_of(ks_in, &local[1]);
+    const uint8_t stencil =
+        roll_stencil_[static_cast<size_t>(cell[0]) * (roll_axes_[1].nodes - 1) + cell[1]];
+    if (stencil == kFallback) return false;
+    interpolate_roll(cell, local, stencil, stored);
+  } else {
+    int cell[3];
+    double local[3];
+    cell[0] = axes_[0].cell_of(alpha, &local[0]);
+    cell[1] = axes_[1].cell_of(std::clamp(kt, -k_max, k_max), &local[1]);
+    cell[2] = axes_[2].cell_of(ks_in, &local[2]);
+    const size_t c =
+        (static_cast<size_t>(cell[0]) * (axes_[1].nodes - 1) + cell[1]) * (axes_[2].nodes - 1) +
+        cell[2];
+    if (cell_stencil_[c] == kFallback) return false;
+    interpolate(cell, local, cell_stencil_[c], stored);
+  }
+  Outcome q = expand(stored, std::abs(ca), kt, ks, spin_coupling_, work_ratio_);
+  if (mirrored) {
+    q.ux = -q.ux;
+    q.oy = -q.oy;
+    q.oz = -q.oz;
+  }
+
+  // Physical units: V0 for velocities, V0 / R for spins, M V0 for impulses.
+  const double spin_unit = speed / params.radius;
+  const double impulse_unit = params.mass * speed;
+  const double work_unit = impulse_unit * speed;
+  ImpactResult& r = *result;
+  r.status = ImpactStatus::ok;
+  r.message.clear();
+  r.method_used = ImpactMethod::table;
+  r.outgoing.velocity = {q.ux * speed, q.uy * speed, 0.0};
+  r.outgoing.spin = {q.ox * spin_unit, q.oy * spin_unit, q.oz * spin_unit};
+  r.rebound_speed = std::sqrt(q.ux * q.ux + q.uy * q.uy) * speed;
+  r.rebound_angle_deg = std::atan2(-q.uy, q.ux) / kDegree;
+  r.impulse_compression = q.pc * impulse_unit;
+  r.impulse_total = q.pt * impulse_unit;
+  r.work_compression = q.wc * work_unit;
+  r.work_total = q.wt * work_unit;
+  r.transition_count = 0;
+  r.rhs_evaluations = 0;
+
+  // Slipping at the start unless the incoming slip is zero and a stick holds there
+  // (the exact method's choice, which prefers stick).
+  {
+    detail::Geometry g;
+    g.s = sin_theta_;
+    g.c = cos_theta_;
+    const detail::Scaled s0 = {ca, sa, w.x * spin_scale, w.y * spin_scale, w.z * spin_scale};
+    const detail::Slips sl = detail::slips_of(g, s0);
+    constexpr double kZeroSlip = 1e-10;  // as the exact method
+    const bool zero_i = sl.ix * sl.ix + sl.iy * sl.iy <= kZeroSlip * kZeroSlip;
+    const bool zero_c = sl.cx * sl.cx + sl.cy * sl.cy <= kZeroSlip * kZeroSlip;
+    bool stick_i = false, stick_c = false;
+    if (zero_i || zero_c) {
+      g = detail::Geometry::from(params);
+      const detail::Friction full = detail::friction_for(g, {zero_i, zero_c}, {}, {});
+      auto against = [](double x, double y) {
+        const double n = std::hypot(x, y);
+        return n > 0.0 ? detail::Direction{-x / n, -y / n} : detail::Direction{};
+      };
+      const detail::Direction di =
+          zero_i ? against(full.ix, full.iy) : detail::direction_of(sl.ix, sl.iy, {}, 0.0);
+      const detail::Direction dc =
+          zero_c ? against(full.cx, full.cy) : detail::direction_of(sl.cx, sl.cy, {}, 0.0);
+      const detail::Modes candidates[4] = {
+          {zero_i, zero_c}, {zero_i, false}, {false, zero_c}, {false, false}};
+      for (const detail::Modes& m : candidates) {
+        const detail::Friction f = detail::friction_for(g, m, di, dc);
+        if ((!m.stick_i || detail::stick_margin_i(g, f) >= 0.0) &&
+            (!m.stick_c || detail::stick_margin_c(g, f) >= 0.0)) {
+          stick_i = m.stick_i;
+          stick_c = m.stick_c;
+          break;
+        }
+      }
+    }
+    r.cushion_slipping_at_start = !stick_i;
+    r.table_slipping_at_start = !stick_c;
+  }
+
+  if (v.y > params.rigid_speed_limit) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "velocity.y is above the rigid-cushion limit (m/s), got %.10g",
+                  v.y);
+    r.status = ImpactStatus::rigid_limit_exceeded;
+    r.message = buf;
+  }
+  return true;
+}
+
+// --- Files ----------------------------------------------------------------------
+
+std::string ImpactTable::cache_file_name(const CushionParams& params,
+                                         const ImpactTableOptions& options) {
+  // The hash takes the parameters to 12 digits, so that a ball of another size
+  // (whose sin(theta) differs in the last bits) finds the same file; load_or_build
+  // still checks that the loaded table covers the parameters.
+  const double s = params.sin_theta();
+  char key[512];
+  std::snprintf(key, sizeof key, "v%u %.12g %.12g %.12g %.12g %.17g %.17g %d %d %d %d %d",
+                kFormatVersion, s, params.mu_cushion, params.mu_table, params.restitution,
+                options.k_max, options.cell_tolerance, options.alpha_nodes, options.topspin_nodes,
+                options.sidespin_nodes, options.roll_alpha_nodes, options.roll_sidespin_nodes);
+  const uint64_t h = fnv1a(key, std::strlen(key));
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "impact_table_v%u_s%.6g_mw%.6g_ms%.6g_e%.6g_n%dx%dx%d_r%dx%d_k%g_tol%g_"
+                "%016llx.bin",
+                kFormatVersion, s, params.mu_cushion, params.mu_table, params.restitution,
+                options.alpha_nodes, options.topspin_nodes, options.sidespin_nodes,
+                options.roll_alpha_nodes, options.roll_sidespin_nodes, options.k_max,
+                options.cell_tolerance, static_cast<unsigned long long>(h));
+  return buf;
+}
+
+bool ImpactTableAccess::save(const ImpactTable& t, const std::string& path) {
+  if (t.empty()) return false;
+  Writer out;
+  out.put_bytes(kMagic, sizeof kMagic);
+  out.put(kFormatVersion);
+  out.put(kEndianMark);
+  const ImpactTableOptions& o = t.options_;
+  for (int32_t n : {o.alpha_nodes, o.topspin_nodes, o.sidespin_nodes, o.roll_alpha_nodes,
+                    o.roll_sidespin_nodes, int32_t{kStored}})
+    out.put(n);
+  out.put(o.k_max);
+  out.put(o.cell_tolerance);
+  const CushionParams& p = t.params_;
+  for (double x : {p.mass, p.radius, p.cushion_height, p.mu_cushion, p.mu_table, p.restitution,
+                   p.rigid_speed_limit})
+    out.put(x);
+  const ImpactTableError& e = t.error_;
+  for (double x :
+       {e.max_speed_relative, e.max_angle_deg, e.max_state_relative, e.max_impulse_relative})
+    out.put(x);
+  for (int64_t n : {e.cells, e.fallback_cells, e.roll_cells, e.roll_fallback_cells, e.test_points})
+    out.put(n);
+  for (size_t n :
+       {t.nodes_.size(), t.cell_stencil_.size(), t.roll_nodes_.size(), t.roll_stencil_.size()})
+    out.put(static_cast<uint64_t>(n));
+  out.put_bytes(t.nodes_.data(), t.nodes_.size() * sizeof(double));
+  out.put_bytes(t.cell_stencil_.data(), t.cell_stencil_.size());
+  out.put_bytes(t.roll_nodes_.data(), t.roll_nodes_.size() * sizeof(double));
+  out.put_bytes(t.roll_stencil_.data(), t.roll_stencil_.size());
+  const uint64_t checksum = fnv1a(out.bytes().data(), out.bytes().size());
+  out.put(checksum);
+
+  // Write beside the target, then rename over it: readers never see a partial file.
+  std::random_device random;
+  const std::string temp = path + ".tmp" + std::to_string(random()) + std::to_string(random());
+  std::error_code ec;
+  {
+    std::ofstream file(temp, std::ios::binary | std::ios::trunc);
+    if (!file) return false;
+    file.write(out.bytes().data(), static_cast<std::streamsize>(out.bytes().size()));
+    file.close();
+    if (!file) {
+      std::filesystem::remove(temp, ec);
+      return false;
+    }
+  }
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    return false;
+  }
+  return true;
+}
+
+std::optional<ImpactTable> ImpactTableAccess::load(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return std::nullopt;
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(file)),
+                                std::istreambuf_iterator<char>());
+  if (bytes.size() < sizeof(uint64_t)) return std::nullopt;
+
+  // The checksum covers everything before it.
+  const size_t body = bytes.size() - sizeof(uint64_t);
+  uint64_t checksum;
+  std::memcpy(&checksum, bytes.data() + body, sizeof checksum);
+  if (checksum != fnv1a(bytes.data(), body)) return std::nullopt;
+
+  Reader in(bytes, body);
+  char magic[sizeof kMagic];
+  uint32_t version = 0, endian = 0;
+  if (!in.get_bytes(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    return std::nullopt;
+  if (!in.get(&version) || version != kFormatVersion) return std::nullopt;
+  if (!in.get(&endian) || endian != kEndianMark) return std::nullopt;
+
+  ImpactTable t;
+  ImpactTableOptions& o = t.options_;
+  int32_t stored = 0;
+  if (!in.get(&o.alpha_nodes) || !in.get(&o.topspin_nodes) || !in.get(&o.sidespin_nodes) ||
+      !in.get(&o.roll_alpha_nodes) || !in.get(&o.roll_sidespin_nodes) || !in.get(&stored) ||
+      stored != kStored || !in.get(&o.k_max) || !in.get(&o.cell_tolerance))
+    return std::nullopt;
+  o.threads = 0;
+  CushionParams& p = t.params_;
+  for (double* x : {&p.mass, &p.radius, &p.cushion_height, &p.mu_cushion, &p.mu_table,
+                    &p.restitution, &p.rigid_speed_limit})
+    if (!in.get(x)) return std::nullopt;
+  ImpactTableError& e = t.error_;
+  for (double* x :
+       {&e.max_speed_relative, &e.max_angle_deg, &e.max_state_relative, &e.max_impulse_relative})
+    if (!in.get(x)) return std::nullopt;
+  for (int64_t* n :
+       {&e.cells, &e.fallback_cells, &e.roll_cells, &e.roll_fallback_cells, &e.test_points})
+    if (!in.get(n)) return std::nullopt;
+  if (!o.validate().empty() || !p.validate().empty()) return std::nullopt;
+  lay_out(&t);
+
+  // Sizes must be the ones these options lay out, and fill the file exactly.
+  const uint64_t cells =
+      static_cast<uint64_t>(o.alpha_nodes - 1) * (o.topspin_nodes - 1) * (o.sidespin_nodes - 1);
+  const uint64_t roll_nodes = t.has_roll_plane_ ? static_cast<uint64_t>(o.roll_alpha_nodes) *
+                                                      o.roll_sidespin_nodes * kStored
+                                                : 0;
+  const uint64_t roll_cells = t.has_roll_plane_ ? static_cast<uint64_t>(o.roll_alpha_nodes - 1) *
+                                                      (o.roll_sidespin_nodes - 1)
+                                                : 0;
+  const uint64_t expected[4] = {
+      static_cast<uint64_t>(o.alpha_nodes) * o.topspin_nodes * o.sidespin_nodes * kStored, cells,
+      roll_nodes, roll_cells};
+  uint64_t sizes[4];
+  for (int i = 0; i < 4; ++i)
+    if (!in.get(&sizes[i]) || sizes[i] != expected[i]) return std::nullopt;
+  if (in.remaining() != (sizes[0] + sizes[2]) * sizeof(double) + sizes[1] + sizes[3])
+    return std::nullopt;
+  t.nodes_.resize(sizes[0]);
+  t.cell_stencil_.resize(sizes[1]);
+  t.roll_nodes_.resize(sizes[2]);
+  t.roll_stencil_.resize(sizes[3]);
+  if (!in.get_bytes(t.nodes_.data(), sizes[0] * sizeof(double)) ||
+      !in.get_bytes(t.cell_stencil_.data(), sizes[1]) ||
+      !in.get_bytes(t.roll_nodes_.data(), sizes[2] * sizeof(double)) ||
+      !in.get_bytes(t.roll_stencil_.data(), sizes[3]))
+    return std::nullopt;
+  for (const std::vector<uint8_t>* codes : {&t.cell_stencil_, &t.roll_stencil_})
+    for (uint8_t s : *codes)
+      if (s >= kStencils && s != kFallback) return std::nullopt;
+  return t;
+}
+
+bool ImpactTable::save(const std::string& path) const {
+  return ImpactTableAccess::save(*this, path);
+}
+
+std::optional<ImpactTable> ImpactTable::load(const std::string& path) {
+  return ImpactTableAccess::load(path);
+}
+
+ImpactTable ImpactTable::load_or_build(const CushionParams& params,
+                                       const ImpactTableOptions& options,
+                                       const std::string& cache_dir, std::string* note) {
+  auto say = [note](std::string text) {
+    if (note) *note = std::move(text);
+  };
+  if (cache_dir.empty()) {
+    ImpactTable t = build(params, options);
+    say(t.empty() ? "impact table not built: invalid params or options"
+                  : "built impact table (no cache directory)");
+    return t;
+  }
+  const std::filesystem::path path =
+      std::filesystem::path(cache_dir) / cache_file_name(params, options);
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(path, ec);
+  std::optional<ImpactTable> cached = load(path.string());
+  if (cached && cached->covers(params) &&
+      ImpactTableAccess::same_shape(cached->options_, options)) {
+    cached->options_.threads = options.threads;
+    say("loaded impact table " + path.string());
+    return std::move(*cached);
+  }
+  ImpactTable t = build(params, options);
+  if (t.empty()) {
+    say("impact table not built: invalid params or options");
+    return t;
+  }
+  std::filesystem::create_directories(cache_dir, ec);
+  const bool saved = t.save(path.string());
+  say(std::string(existed ? "rebuilt impact table (the cached file was unusable)"
+                          : "built impact table") +
+      (saved ? ", saved to " : ", could not save to ") + path.string());
+  return t;
+}
+
+std::string default_table_cache_dir() {
+  auto set = [](const char* name) -> const char* {
+    const char* value = std::getenv(name);
+    return value != nullptr && *value != '\0' ? value : nullptr;
+  };
+  if (const char* dir = set("CUEPLAN_CACHE_DIR")) return dir;
+  if (const char* dir = set("XDG_CACHE_HOME")) return std::string(dir) + "/cueplan";
+  if (const char* dir = set("HOME")) return std::string(dir) + "/.cache/cueplan";
+  std::error_code ec;
+  const std::filesystem::path temp = std::filesystem::temp_directory_path(ec);
+  return ((ec ? std::filesystem::path("/tmp") : temp) / "cueplan").string();
+}
+
 }  // namespace cueplan::physics
