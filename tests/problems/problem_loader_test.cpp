@@ -1,0 +1,520 @@
+// Tests of the problem-file loader: the shipped examples, defaults, the mapping onto
+// the physics Scene, and one precise error (file, line, field) for each kind of bad input.
+#include "cueplan/problems/problem.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace cueplan::problems {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> shipped_examples() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(CUEPLAN_PROBLEMS_DIR)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string example_path(const std::string& name) {
+  return std::string(CUEPLAN_PROBLEMS_DIR) + "/" + name + ".yaml";
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The format reference's full example (problems/README.md), every field given.
+constexpr const char* kFullExample = R"(name: one-rail position            # optional
+table:                             # optional; defaults: a snooker table
+  length: 3.569                    # m between cushion noses (x)
+  width: 1.778                     # m (y)
+  pockets: standard                # standard or none
+  pocket_radius: 0.045             # m, capture circle around each pocket point
+ball: {radius: 0.02625, mass: 0.1406}
+physics: {mu_slide: 0.212, mu_roll: 0.01, mu_spin: 0.044, mu_cushion: 0.14,
+          restitution: 0.98, cushion_height: 0.03675, gravity: 9.81}
+cue_ball: [0.8, 0.5]               # m
+target: [2.6, 1.2]                 # m, where the cue ball should stop
+tolerance: 0.02                    # m, radius of the landing zone
+obstacles: [[1.5, 0.9]]            # other balls at rest; optional
+limits:                            # search space and constraints for the planner
+  speed: [0.2, 4.5]                # m/s
+  spin: 1.25                       # max sqrt(k_T^2 + k_S^2) (miscue limit)
+  aim_deg: free                    # free, a number, or [lo, hi]
+  cushions: [1, 3]                 # cushion contacts allowed before rest
+)";
+
+Problem parse_ok(const std::string& text) {
+  LoadResult r = parse_problem(text, "test.yaml");
+  EXPECT_TRUE(r.ok()) << r.error;
+  EXPECT_TRUE(r.error.empty());
+  return r.ok() ? *r.problem : Problem{};
+}
+
+// ---- Shipped examples ----------------------------------------------------------
+
+TEST(ShippedProblems, AtLeastEightShipWithEveryKindOfShot) {
+  const std::vector<std::string> names = shipped_examples();
+  EXPECT_GE(names.size(), 8u);
+  for (const char* required :
+       {"one_rail_position", "two_rail_position", "three_rail_position", "blocked_direct_route",
+        "pool_table", "paper_figure8_rolling", "paper_figure9_topspin",
+        "paper_figure10_sidespin"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
+  }
+}
+
+class ShippedProblem : public testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedProblem, LoadsWithoutError) {
+  const LoadResult r = load_problem(example_path(GetParam()));
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_EQ(r.problem->source, example_path(GetParam()));
+  EXPECT_FALSE(r.problem->name.empty());
+  EXPECT_FALSE(describe(*r.problem).empty());
+}
+
+// Each file records a shot that solves it; simulate it and check that it still does.
+TEST_P(ShippedProblem, WitnessShotInItsHeaderReachesTheTarget) {
+  const std::string text = read_text(example_path(GetParam()));
+  const std::string mark = "# reachable, e.g. speed ";
+  const std::size_t at = text.find(mark);
+  ASSERT_NE(at, std::string::npos) << "no witness line in " << GetParam();
+  physics::Shot shot;
+  int cushions = -1;
+  ASSERT_EQ(std::sscanf(text.c_str() + at + mark.size(),
+                        "%lf m/s, aim %lf deg, k_T %lf, k_S %lf: lands %*f m from target after %d",
+                        &shot.speed, &shot.aim_deg, &shot.topspin_k, &shot.sidespin_k, &cushions),
+            5)
+      << text.substr(at, text.find('\n', at) - at);
+  const LoadResult r = parse_problem(text, GetParam());
+  ASSERT_TRUE(r.ok()) << r.error;
+  const Problem& p = *r.problem;
+  EXPECT_EQ(check_shot(p.limits, shot), "");
+  const physics::ShotResult outcome = physics::simulate(p.scene, p.cue_ball, shot);
+  EXPECT_TRUE(reaches_target(p, outcome))
+      << "status " << physics::to_string(outcome.status) << ", rests at ("
+      << outcome.final_position.x << ", " << outcome.final_position.y << "), "
+      << miss_distance(p, outcome) << " m from the target after " << outcome.cushion_hits
+      << " cushions";
+  EXPECT_EQ(outcome.cushion_hits, cushions);
+  // Recorded to a few mm inside a 15-30 mm zone: flag a drift before it breaks.
+  EXPECT_LT(miss_distance(p, outcome), 0.005);
+}
+
+INSTANTIATE_TEST_SUITE_P(Problems, ShippedProblem, testing::ValuesIn(shipped_examples()),
+                         [](const testing::TestParamInfo<std::string>& param) {
+                           return param.param;
+                         });
+
+TEST(ShippedProblems, BlockedRouteHasNoClearStraightPath) {
+  const LoadResult r = load_problem(example_path("blocked_direct_route"));
+  ASSERT_TRUE(r.ok()) << r.error;
+  const Problem& p = *r.problem;
+  const double dx = p.target.x - p.cue_ball.x, dy = p.target.y - p.cue_ball.y;
+  const double length2 = dx * dx + dy * dy;
+  bool blocked = false;
+  for (const physics::Vec2 o : p.scene.obstacles) {
+    const double t =
+        std::clamp(((o.x - p.cue_ball.x) * dx + (o.y - p.cue_ball.y) * dy) / length2, 0.0, 1.0);
+    const double gap = std::hypot(p.cue_ball.x + t * dx - o.x, p.cue_ball.y + t * dy - o.y);
+    blocked = blocked || gap < 2.0 * p.scene.radius();
+  }
+  EXPECT_TRUE(blocked);
+  EXPECT_EQ(p.limits.cushions_min, 0);  // the direct route would be allowed if it were free
+}
+
+// ---- Defaults and values -------------------------------------------------------
+
+TEST(ProblemDefaults, OmittedFieldsTakeTheirDocumentedDefaults) {
+  const Problem p = parse_ok("cue_ball: [0.8, 0.5]\ntarget: [2.6, 1.2]\n");
+  const physics::Scene snooker = physics::snooker_scene();
+  EXPECT_EQ(p.name, "test");  // stem of the source name
+  EXPECT_EQ(p.source, "test.yaml");
+  EXPECT_DOUBLE_EQ(p.scene.length, 3.569);
+  EXPECT_DOUBLE_EQ(p.scene.width, 1.778);
+  ASSERT_EQ(p.scene.pockets.size(), snooker.pockets.size());
+  for (std::size_t i = 0; i < snooker.pockets.size(); ++i) {
+    EXPECT_DOUBLE_EQ(p.scene.pockets[i].centre.x, snooker.pockets[i].centre.x) << i;
+    EXPECT_DOUBLE_EQ(p.scene.pockets[i].centre.y, snooker.pockets[i].centre.y) << i;
+    EXPECT_DOUBLE_EQ(p.scene.pockets[i].radius, kDefaultPocketRadius) << i;
+  }
+  const physics::CushionParams paper;
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.radius, paper.radius);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mass, paper.mass);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.cushion_height, paper.cushion_height);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_cushion, paper.mu_cushion);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_table, paper.mu_table);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.restitution, paper.restitution);
+  const physics::ClothParams cloth;
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_slide, cloth.mu_slide);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_roll, cloth.mu_roll);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_spin, cloth.mu_spin);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.gravity, cloth.gravity);
+  EXPECT_TRUE(p.scene.obstacles.empty());
+  EXPECT_DOUBLE_EQ(p.tolerance, kDefaultTolerance);
+  EXPECT_DOUBLE_EQ(p.limits.speed_min, 0.2);
+  EXPECT_DOUBLE_EQ(p.limits.speed_max, 4.5);
+  EXPECT_DOUBLE_EQ(p.limits.spin_max, 1.25);
+  EXPECT_EQ(p.limits.aim.mode, AimMode::free);
+  EXPECT_EQ(p.limits.cushions_min, 1);
+  EXPECT_EQ(p.limits.cushions_max, 3);
+}
+
+TEST(ProblemValues, FullFormatExampleRoundTripsEveryValue) {
+  const Problem p = parse_ok(kFullExample);
+  EXPECT_EQ(p.name, "one-rail position");
+  EXPECT_DOUBLE_EQ(p.scene.length, 3.569);
+  EXPECT_DOUBLE_EQ(p.scene.width, 1.778);
+  ASSERT_EQ(p.scene.pockets.size(), 6u);
+  EXPECT_DOUBLE_EQ(p.scene.pockets[4].centre.x, 3.569 / 2);
+  EXPECT_DOUBLE_EQ(p.scene.pockets[4].centre.y, 1.778);
+  EXPECT_DOUBLE_EQ(p.scene.pockets[4].radius, 0.045);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.radius, 0.02625);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mass, 0.1406);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_slide, 0.212);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_table, 0.212);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_roll, 0.01);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_spin, 0.044);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_cushion, 0.14);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.restitution, 0.98);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.cushion_height, 0.03675);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.gravity, 9.81);
+  EXPECT_DOUBLE_EQ(p.cue_ball.x, 0.8);
+  EXPECT_DOUBLE_EQ(p.cue_ball.y, 0.5);
+  EXPECT_DOUBLE_EQ(p.target.x, 2.6);
+  EXPECT_DOUBLE_EQ(p.target.y, 1.2);
+  EXPECT_DOUBLE_EQ(p.tolerance, 0.02);
+  ASSERT_EQ(p.scene.obstacles.size(), 1u);
+  EXPECT_DOUBLE_EQ(p.scene.obstacles[0].x, 1.5);
+  EXPECT_DOUBLE_EQ(p.scene.obstacles[0].y, 0.9);
+  EXPECT_DOUBLE_EQ(p.limits.speed_min, 0.2);
+  EXPECT_DOUBLE_EQ(p.limits.speed_max, 4.5);
+  EXPECT_DOUBLE_EQ(p.limits.spin_max, 1.25);
+  EXPECT_EQ(p.limits.aim.mode, AimMode::free);
+  EXPECT_EQ(p.limits.cushions_min, 1);
+  EXPECT_EQ(p.limits.cushions_max, 3);
+}
+
+TEST(ProblemValues, OtherValuesReachTheirSceneFields) {
+  const Problem p = parse_ok(
+      "table: {length: 3.0, width: 1.5, pocket_radius: 0.05}\n"
+      "physics: {mu_slide: 0.2, mu_roll: 0.008, mu_spin: 0.03, mu_cushion: 0.12,\n"
+      "          restitution: 0.9, cushion_height: 0.035, gravity: 9.8}\n"
+      "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: 0.01\n");
+  EXPECT_DOUBLE_EQ(p.scene.pockets[2].centre.x, 3.0);
+  EXPECT_DOUBLE_EQ(p.scene.pockets[5].centre.y, 1.5);
+  EXPECT_DOUBLE_EQ(p.scene.pockets[1].radius, 0.05);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_slide, 0.2);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_table, 0.2);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_roll, 0.008);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_spin, 0.03);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_cushion, 0.12);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.restitution, 0.9);
+  EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.cushion_height, 0.035);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.gravity, 9.8);
+  EXPECT_DOUBLE_EQ(p.tolerance, 0.01);
+}
+
+TEST(ProblemValues, PoolBallGetsCushionHeightOfSevenFifthsItsRadius) {
+  const Problem p = parse_ok(
+      "table: {length: 2.54, width: 1.27}\nball: {radius: 0.028575, mass: 0.17}\n"
+      "cue_ball: [0.6, 0.4]\ntarget: [1.9, 0.9]\n");
+  EXPECT_NEAR(p.scene.ball_and_cushion.cushion_height, 1.4 * 0.028575, 1e-15);
+  EXPECT_NEAR(p.scene.ball_and_cushion.cushion_height, 0.0400, 5e-6);
+  EXPECT_NEAR(p.scene.ball_and_cushion.sin_theta(), 0.4, 1e-12);
+}
+
+TEST(ProblemValues, PocketsNoneLeavesAnOpenTable) {
+  const Problem p = parse_ok("table: {pockets: none}\ncue_ball: [0.03, 0.03]\ntarget: [2, 1]\n");
+  EXPECT_TRUE(p.scene.pockets.empty());
+  EXPECT_DOUBLE_EQ(p.cue_ball.x, 0.03);  // a corner is cloth when there is no pocket
+}
+
+TEST(ProblemValues, SingleCushionCountMeansExactlyThatMany) {
+  const Problem p = parse_ok("cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {cushions: 2}\n");
+  EXPECT_EQ(p.limits.cushions_min, 2);
+  EXPECT_EQ(p.limits.cushions_max, 2);
+  const Problem none = parse_ok("cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {cushions: [0, 0]}\n");
+  EXPECT_EQ(none.limits.cushions_max, 0);
+}
+
+TEST(ProblemValues, AimIsFreeFixedOrARange) {
+  const Problem fixed = parse_ok("cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {aim_deg: -45}\n");
+  EXPECT_EQ(fixed.limits.aim.mode, AimMode::fixed);
+  EXPECT_DOUBLE_EQ(fixed.limits.aim.lo_deg, -45.0);
+  EXPECT_DOUBLE_EQ(fixed.limits.aim.hi_deg, -45.0);
+  const Problem range =
+      parse_ok("cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {aim_deg: [170, 190]}\n");
+  EXPECT_EQ(range.limits.aim.mode, AimMode::range);
+  EXPECT_DOUBLE_EQ(range.limits.aim.lo_deg, 170.0);
+  EXPECT_DOUBLE_EQ(range.limits.aim.hi_deg, 190.0);
+}
+
+TEST(ProblemValues, ExplicitNumberTagsAndExponentsAreNumbers) {
+  const Problem p = parse_ok("cue_ball: [!!float 1, 1e0]\ntarget: [+2.0, .5]\n");
+  EXPECT_DOUBLE_EQ(p.cue_ball.x, 1.0);
+  EXPECT_DOUBLE_EQ(p.cue_ball.y, 1.0);
+  EXPECT_DOUBLE_EQ(p.target.x, 2.0);
+  EXPECT_DOUBLE_EQ(p.target.y, 0.5);
+}
+
+// ---- Shots against a problem ---------------------------------------------------
+
+TEST(ProblemShotChecks, LimitsBoundSpeedSpinAndAimModuloTurns) {
+  Limits l;
+  EXPECT_EQ(check_shot(l, {1.0, 10.0, 1.0, 0.0}), "");
+  EXPECT_EQ(check_shot(l, {4.5, 10.0, 0.75, 1.0}), "");  // both bounds are inside
+  EXPECT_NE(check_shot(l, {0.1, 10.0, 1.0, 0.0}), "");
+  EXPECT_NE(check_shot(l, {5.0, 10.0, 1.0, 0.0}), "");
+  EXPECT_NE(check_shot(l, {1.0, 10.0, 1.0, 1.0}), "");  // sqrt(2) > 1.25
+  EXPECT_NE(check_shot(l, {1.0, NAN, 0.0, 0.0}), "");
+  l.aim = {AimMode::range, 170.0, 190.0};
+  EXPECT_EQ(check_shot(l, {1.0, 180.0, 0.0, 0.0}), "");
+  EXPECT_EQ(check_shot(l, {1.0, -175.0, 0.0, 0.0}), "");  // = 185 deg
+  EXPECT_NE(check_shot(l, {1.0, 0.0, 0.0, 0.0}), "");
+  l.aim = {AimMode::fixed, -45.0, -45.0};
+  EXPECT_EQ(check_shot(l, {1.0, 315.0, 0.0, 0.0}), "");
+  EXPECT_NE(check_shot(l, {1.0, -44.0, 0.0, 0.0}), "");
+}
+
+TEST(ProblemShotChecks, OnlyARestWithinToleranceAfterAllowedCushionsReachesTheTarget) {
+  Problem p = parse_ok("cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: 0.02\n");
+  physics::ShotResult r;
+  r.status = physics::ShotStatus::rest;
+  r.final_position = {2.01, 1.01};
+  r.cushion_hits = 1;
+  EXPECT_NEAR(miss_distance(p, r), std::hypot(0.01, 0.01), 1e-12);
+  EXPECT_TRUE(reaches_target(p, r));
+  r.cushion_hits = 0;  // default limits ask for 1 to 3 cushions
+  EXPECT_FALSE(reaches_target(p, r));
+  r.cushion_hits = 4;
+  EXPECT_FALSE(reaches_target(p, r));
+  r.cushion_hits = 2;
+  r.final_position = {2.03, 1.0};
+  EXPECT_FALSE(reaches_target(p, r));
+  r.final_position = {2.0, 1.0};
+  r.status = physics::ShotStatus::pocketed;
+  EXPECT_FALSE(reaches_target(p, r));
+  EXPECT_TRUE(std::isinf(miss_distance(p, r)));
+}
+
+TEST(ProblemDescribe, SummaryGivesPositionsAndLimitsWithUnits) {
+  const std::string text = describe(parse_ok(kFullExample));
+  for (const char* part : {"one-rail position", "test.yaml", "3.569 x 1.778 m", "6 pockets",
+                           "26.25 mm", "(0.8000, 0.5000) m", "(2.6000, 1.2000) m", "20 mm",
+                           "1 obstacle", "0.2-4.5 m/s", "aim free", "1-3 cushions"})
+    EXPECT_NE(text.find(part), std::string::npos) << part << " not in:\n" << text;
+}
+
+// ---- Bad input -----------------------------------------------------------------
+
+struct BadInput {
+  const char* name;
+  const char* yaml;
+  int line;           // expected line (0: the message has no line)
+  const char* field;  // expected field
+  const char* says;   // a phrase the message must contain
+};
+
+void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
+
+constexpr const char* kPositions = "cue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n";
+
+class BadProblemFile : public testing::TestWithParam<BadInput> {};
+
+TEST_P(BadProblemFile, ErrorNamesFileLineAndFieldWithoutThrowing) {
+  const BadInput& c = GetParam();
+  LoadResult r;
+  ASSERT_NO_THROW(r = parse_problem(c.yaml, "bad.yaml"));
+  ASSERT_FALSE(r.ok()) << "accepted:\n" << c.yaml;
+  const std::string prefix = c.line > 0 ? "bad.yaml:" + std::to_string(c.line) + ": " +
+                                              c.field + ": "
+                                        : "bad.yaml: " + std::string(c.field) + ": ";
+  EXPECT_EQ(r.error.substr(0, prefix.size()), prefix) << r.error;
+  EXPECT_NE(r.error.find(c.says), std::string::npos) << r.error;
+  EXPECT_EQ(r.error.find('\n'), std::string::npos) << "one line: " << r.error;
+}
+
+const BadInput kBadInputs[] = {
+    {"UnknownTopLevelKey", "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerence: 0.02\n", 3, "tolerence",
+     "did you mean tolerance"},
+    {"UnknownNestedKey", "table:\n  length: 3.5\n  widht: 1.7\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     3, "table.widht", "unknown key"},
+    {"UnknownKeyInFlowMapping", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {speed: [1, 2], spn: 1}\n",
+     3, "limits.spn", "did you mean spin"},
+    {"MappingWhereNumber", "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: {a: 1}\n", 3, "tolerance",
+     "must be a number, got a mapping"},
+    {"NumberWherePoint", "cue_ball: 0.5\ntarget: [2, 1]\n", 1, "cue_ball", "got \"0.5\""},
+    {"NumberWhereMapping", "ball: 0.03\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1, "ball",
+     "must be a mapping"},
+    {"StringInsteadOfNumber", "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: \"0.02\"\n", 3,
+     "tolerance", "quoted string"},
+    {"WordInsteadOfNumber", "cue_ball: [1, one]\ntarget: [2, 1]\n", 1, "cue_ball[1]",
+     "must be a number"},
+    {"BooleanInsteadOfNumber", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  spin: true\n", 4,
+     "limits.spin", "must be a number"},
+    {"HexNumber", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {spin: 0x1}\n", 3, "limits.spin",
+     "must be a number"},
+    {"NaN", "ball:\n  radius: .nan\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2, "ball.radius",
+     "finite"},
+    {"PositiveInfinity", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  speed: [0.2, .inf]\n", 4,
+     "limits.speed[1]", "finite"},
+    {"NegativeInfinityInPoint", "cue_ball: [-.inf, 1]\ntarget: [2, 1]\n", 1, "cue_ball[0]",
+     "finite"},
+    {"OverflowingNumber", "cue_ball: [1e999, 1]\ntarget: [2, 1]\n", 1, "cue_ball[0]", "finite"},
+    {"NegativeLength", "table:\n  length: -3.569\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "table.length", "positive"},
+    {"ZeroRadius", "ball: {radius: 0, mass: 0.1}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "ball.radius", "positive"},
+    {"NegativePocketRadius", "table: {pocket_radius: -0.04}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     1, "table.pocket_radius", "positive"},
+    {"UnknownPocketsWord", "table:\n  pockets: six\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "table.pockets", "standard or none"},
+    {"ZeroSlidingFriction", "physics:\n  mu_slide: 0\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "physics.mu_slide", "positive"},
+    {"RestitutionAboveOne",
+     "cue_ball: [1, 1]\ntarget: [2, 1]\nphysics:\n  gravity: 9.81\n  restitution: 1.2\n", 5,
+     "physics.restitution", "(0, 1]"},
+    {"CushionBelowBallCentre", "physics: {cushion_height: 0.02}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     1, "physics.cushion_height", "between radius and 2*radius"},
+    {"CushionFrictionTooHigh", "physics: {mu_cushion: 0.5}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     1, "physics.mu_cushion", "tan(theta)"},
+    {"BallTooBigForTable", "ball: {radius: 1.0}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "ball.radius", "leave room for a ball"},
+    {"CueBallOffTable", "cue_ball: [0.01, 0.5]\ntarget: [2, 1]\n", 1, "cue_ball",
+     "lies off the table"},
+    {"TargetOffTable", "cue_ball: [1, 1]\ntarget:\n  - 2.0\n  - 1.77\n", 2, "target",
+     "lies off the table"},
+    {"CueBallInsideObstacle", "obstacles:\n  - [1.0, 1.0]\ncue_ball: [1.02, 1.0]\ntarget: [2, 1]\n",
+     3, "cue_ball", "overlaps obstacles[0]"},
+    {"TargetInsideObstacle", "obstacles: [[2.0, 1.0]]\ncue_ball: [1, 1]\ntarget: [2.03, 1.0]\n", 3,
+     "target", "overlaps obstacles[0]"},
+    {"ObstacleOffTable", "obstacles:\n  - [1.0, 1.0]\n  - [5.0, 1.0]\ncue_ball: [0.5, 0.5]\n"
+                         "target: [2, 1]\n",
+     3, "obstacles[1]", "off the table"},
+    {"ObstaclesOverlap", "obstacles:\n  - [1.0, 1.0]\n  - [1.03, 1.0]\ncue_ball: [0.5, 0.5]\n"
+                         "target: [2, 1]\n",
+     3, "obstacles[1]", "overlaps obstacles[0]"},
+    {"TargetInPocket", "cue_ball: [1, 1]\ntarget: [0.03, 0.03]\n", 2, "target", "inside pocket 0"},
+    {"CueBallInMiddlePocket", "cue_ball: [1.7845, 1.75]\ntarget: [1, 1]\n", 1, "cue_ball",
+     "inside pocket 4"},
+    {"PointOfThree", "cue_ball: [1, 1, 1]\ntarget: [2, 1]\n", 1, "cue_ball", "got 3 elements"},
+    {"PointOfOne", "cue_ball: [1, 1]\ntarget: [2]\n", 2, "target", "got 1 element"},
+    {"SpeedLimitsOfThree", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  speed: [1, 2, 3]\n", 4,
+     "limits.speed", "[min, max]"},
+    {"ObstaclesNotAList", "obstacles: [1.0, 1.0]\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "obstacles[0]", "point [x, y]"},
+    {"MissingCueBall", "# a comment line first\ntarget: [2, 1]\ntolerance: 0.02\n", 2, "cue_ball",
+     "missing"},
+    {"MissingTarget", "name: no target\ncue_ball: [1, 1]\n", 1, "target", "missing"},
+    {"ZeroTolerance", "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: 0\n", 3, "tolerance",
+     "positive"},
+    {"NegativeTolerance", "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: -0.01\n", 3, "tolerance",
+     "positive"},
+    {"EmptyValue", "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance:\nlimits: {spin: 1}\n", 3,
+     "tolerance", "got nothing"},
+    {"SpeedLimitsReversed", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  speed: [3.0, 1.0]\n", 4,
+     "limits.speed", "min must be below max"},
+    {"SpeedLimitZero", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  speed: [0, 1.0]\n", 4,
+     "limits.speed[0]", "positive"},
+    {"SpinLimitNegative", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  spin: -1\n", 4,
+     "limits.spin", "positive"},
+    {"NonIntegerCushions", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  cushions: [1.5, 3]\n", 4,
+     "limits.cushions[0]", "whole number"},
+    {"NonIntegerCushionCount", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  cushions: 2.5\n", 4,
+     "limits.cushions", "whole number"},
+    {"NegativeCushions", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  cushions: [-1, 3]\n", 4,
+     "limits.cushions[0]", "must lie in [0, 1000]"},
+    {"CushionsReversed", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  cushions: [3, 1]\n", 4,
+     "limits.cushions", "lo must not exceed hi"},
+    {"AimRangeReversed", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  aim_deg: [30, 10]\n", 4,
+     "limits.aim_deg", "lo < hi"},
+    {"AimRangeOverATurn", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  aim_deg: [-200, 200]\n",
+     4, "limits.aim_deg", "lo + 360"},
+    {"AimUnknownWord", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  aim_deg: any\n", 4,
+     "limits.aim_deg", "free, an angle"},
+    {"DuplicatedKey", "cue_ball: [1, 1]\ntarget: [2, 1]\ncue_ball: [1.2, 1]\n", 3, "cue_ball",
+     "duplicated key (first given at line 1)"},
+    {"DuplicatedKeyInFlowMapping",
+     "cue_ball: [1, 1]\ntarget: [2, 1]\nball: {radius: 0.03, radius: 0.02}\n", 3, "ball.radius",
+     "duplicated key"},
+    {"EmptyName", "name: ''\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1, "name", "must not be empty"},
+    {"EmptyFile", "", 1, "(document)", "empty"},
+    {"OnlyComments", "# nothing here\n# still nothing\n", 1, "(document)", "empty"},
+    {"DocumentIsASequence", "- cue_ball\n- target\n", 1, "(document)", "got a sequence"},
+    {"DocumentIsAScalar", "hello\n", 1, "(document)", "must be a mapping"},
+    {"TwoDocuments", "cue_ball: [1, 1]\ntarget: [2, 1]\n---\ncue_ball: [1, 1]\n", 4, "(document)",
+     "second YAML document"},
+    {"UnclosedFlowSequence", "cue_ball: [1, 1\ntarget: [2, 1]\n", 2, "yaml",
+     "end of sequence flow not found"},
+    {"BadIndentation", "table:\n  length: 3.5\n width: 1.7\ncue_ball: [1, 1]\n", 3, "yaml",
+     "column"},
+    {"TabIndentation", "table:\n\tlength: 3.5\n", 2, "yaml", ""},
+};
+
+INSTANTIATE_TEST_SUITE_P(Problems, BadProblemFile, testing::ValuesIn(kBadInputs),
+                         [](const testing::TestParamInfo<BadInput>& param) {
+                           return std::string(param.param.name);
+                         });
+
+TEST(BadProblemFiles, UnreadableFileNamesItsPath) {
+  const std::string path = "/nonexistent-dir/no_such_problem.yaml";
+  LoadResult r;
+  ASSERT_NO_THROW(r = load_problem(path));
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.error.rfind(path + ": cannot open", 0), 0u) << r.error;
+}
+
+TEST(BadProblemFiles, DirectoryIsNotAProblemFile) {
+  const LoadResult r = load_problem(CUEPLAN_PROBLEMS_DIR);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.error.rfind(std::string(CUEPLAN_PROBLEMS_DIR) + ": is a directory", 0), 0u)
+      << r.error;
+}
+
+TEST(BadProblemFiles, LoadedFileErrorsCarryThePath) {
+  const fs::path path =
+      fs::temp_directory_path() / ("cueplan_problem_test_" + std::to_string(::getpid()) + ".yaml");
+  {
+    std::ofstream out(path);
+    out << "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: .nan\n";
+  }
+  const LoadResult r = load_problem(path.string());
+  fs::remove(path);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.error.rfind(path.string() + ":3: tolerance: ", 0), 0u) << r.error;
+}
+
+// Whatever a cut-off file holds, the loader answers with a problem or one error line.
+TEST(BadProblemFiles, EveryPrefixOfAValidFileLoadsOrFailsCleanly) {
+  const std::string text = kFullExample;
+  for (std::size_t n = 0; n <= text.size(); ++n) {
+    LoadResult r;
+    ASSERT_NO_THROW(r = parse_problem(text.substr(0, n), "cut.yaml")) << n;
+    EXPECT_NE(r.ok(), !r.error.empty()) << n;
+    if (!r.ok()) {
+      EXPECT_EQ(r.error.rfind("cut.yaml:", 0), 0u) << n << ": " << r.error;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cueplan::problems
