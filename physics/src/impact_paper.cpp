@@ -33,8 +33,8 @@ ScaledOutcome solve_paper(const ScaledImpact& impact, int steps,
   if (trace) trace->push_back(scaled_sample(g, q, p, work));
   for (long long n = 0; n < max_iterations; ++n) {
     const Slips sl = slips_of(g, q);
-    const double si = std::hypot(sl.ix, sl.iy);
-    const double sc = std::hypot(sl.cx, sl.cy);
+    const double si = std::sqrt(sl.ix * sl.ix + sl.iy * sl.iy);
+    const double sc = std::sqrt(sl.cx * sl.cx + sl.cy * sl.cy);
     Friction f;
     if (si > 0.0) {
       f.ix = -g.mu_w * sl.ix / si;
