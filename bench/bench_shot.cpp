@@ -24,9 +24,9 @@ struct Case {
 
 // Base shots from (0.8, 0.5) on a snooker table without pockets.
 const Case kCases[] = {
-    {"one_cushion", {1.6, 60.0, 0.5, 0.0}, 1},
-    {"two_cushions", {2.6, 30.0, 1.0, 0.5}, 2},
-    {"three_cushions", {3.4, 15.0, 1.0, 1.0}, 3},
+    {"one_cushion", {0.70, 60.0, 0.5, 0.0}, 1},
+    {"two_cushions", {0.90, 30.0, 1.0, 0.5}, 2},
+    {"three_cushions", {1.72, 15.0, 1.0, 1.0}, 3},
 };
 
 Scene scene(bool with_obstacles) {
@@ -71,6 +71,8 @@ void BM_Shot(benchmark::State& state, int which, bool obstacles, bool use_table)
     if (++i == shots.size()) i = 0;
   }
   state.SetItemsProcessed(state.iterations());
+  // The route the case is named after, on average over its shots (obstacles may
+  // stop some early).
   state.counters["mean_cushions"] = cushions / static_cast<double>(shots.size());
 }
 

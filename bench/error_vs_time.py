@@ -31,6 +31,10 @@ def load(path):
             label = "paper, N = " + name.split(":")[1]
         elif name.startswith("BM_ImpactTable"):
             label = "table"
+        elif name.startswith("BM_ImpactRollingTable"):
+            label = "table, natural roll (k_T = 1)"
+        elif name.startswith("BM_ImpactRollingExact"):
+            label = "exact, natural roll (k_T = 1)"
         else:
             continue
         rows.append({
@@ -52,7 +56,8 @@ def table(rows):
            " RHS calls per impact |",
            "|---|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
-        ratio = f"{paper['ns'] / r['ns']:.1f}x" if paper else "-"
+        # Ratios only within one input set (the natural-roll rows have their own).
+        ratio = f"{paper['ns'] / r['ns']:.1f}x" if paper and "natural roll" not in r["label"] else "-"
         t = f"{r['ns'] / 1000:.2f} us" if r["ns"] >= 1000 else f"{r['ns']:.0f} ns"
         out.append(f"| {r['label']} | {t} | {ratio} | {r['max_state']:.1e} |"
                    f" {r['median_state']:.1e} | {r['max_speed']:.1e} | {r['max_angle']:.1e} |"
@@ -61,6 +66,8 @@ def table(rows):
 
 
 def svg(rows, path):
+    # One input set per plot: the natural-roll rows are reported in the table only.
+    rows = [r for r in rows if "natural roll" not in r["label"]]
     w, h, left, right, top, bottom = 720, 460, 80, 30, 30, 60
     xs = [math.log10(r["ns"]) for r in rows]
     ys = [math.log10(max(r["max_state"], 1e-17)) for r in rows]

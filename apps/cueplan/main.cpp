@@ -7,6 +7,7 @@
 #include "exit_codes.hpp"
 #include "figures_command.hpp"
 #include "rebound_command.hpp"
+#include "simulate_command.hpp"
 
 namespace {
 
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
       "Exit codes: 0 done, 1 no usable result, 2 bad command line or input.");
 
   ReboundCommand rebound(app);
+  SimulateCommand simulate(app);
   FiguresCommand figures(app);
 
   try {
@@ -47,7 +49,7 @@ int main(int argc, char** argv) {
     // CLI11 reports an unknown command as a missing one; name it instead.
     if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
       std::cerr << "cueplan: unknown command '" << argv[1]
-                << "'; the commands are rebound and figures\n";
+                << "'; the commands are rebound, simulate and figures\n";
       return kExitUsage;
     }
     std::cerr << parse_error_line(app, error) << '\n';
@@ -55,6 +57,7 @@ int main(int argc, char** argv) {
   }
 
   if (rebound.selected()) return rebound.run(std::cout, std::cerr);
+  if (simulate.selected()) return simulate.run(std::cout, std::cerr);
   if (figures.selected()) return figures.run(std::cout, std::cerr);
   return kExitUsage;  // unreachable: a subcommand is required
 }

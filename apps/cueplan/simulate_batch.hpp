@@ -1,0 +1,61 @@
+// `cueplan simulate PROBLEM --batch FILE.csv`: many shots on one scene, one output row
+// each, and the checks a shot's inputs pass in both forms of the command.
+//
+// Input:  header `speed,aim_deg,topspin_k,sidespin_k`, then one shot per line
+//         (V m/s, aim deg from +x, k_T, k_S); blank lines are skipped.
+// Output: the input columns, then final_x, final_y (m), cushion_hits, pocketed and
+//         hit_obstacle (1 or 0), duration (s), miss_distance (m from the target; inf
+//         unless the ball came to rest), reaches_target (1 or 0), status and a quoted
+//         message. A bad row gets status parse_error or invalid_input and empty result
+//         cells; the others are unaffected. Rows come out in input order, identical for
+//         any thread count.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/shot.hpp"
+#include "cueplan/problems/problem.hpp"
+
+namespace cueplan::cli {
+
+inline constexpr const char* kShotBatchHeader = "speed,aim_deg,topspin_k,sidespin_k";
+inline constexpr const char* kShotBatchResultHeader =
+    "final_x,final_y,cushion_hits,pocketed,hit_obstacle,duration,miss_distance,reaches_target,"
+    "status,message";
+
+// How the caller spells a shot's inputs in its messages (flags or CSV columns).
+struct ShotNames {
+  const char* speed;
+  const char* aim;
+  const char* topspin;
+  const char* sidespin;
+};
+inline constexpr ShotNames kShotFlagNames = {"--speed", "--aim", "--topspin-k", "--sidespin-k"};
+inline constexpr ShotNames kShotColumnNames = {"speed", "aim_deg", "topspin_k", "sidespin_k"};
+
+// Empty when the shot can be simulated (speed > 0, everything finite); otherwise one
+// line naming the input.
+std::string check_shot_inputs(const physics::Shot& shot, const ShotNames& names);
+
+// One line of the input file, as read.
+struct ShotBatchRow {
+  int line = 0;                     // 1-based line number in the file
+  std::vector<std::string> fields;  // the cells as written
+};
+
+// The input rows of a batch file, or why the whole file cannot be used.
+struct ShotBatchInput {
+  std::vector<ShotBatchRow> rows;
+  std::string error;  // empty when the file was read and its header is right
+};
+
+ShotBatchInput read_shot_batch(const std::string& path);
+
+// Simulates every row on the problem's scene (from `threads` threads, 0: one per core)
+// and writes the output CSV, header included, to `out`.
+void write_shot_batch(const ShotBatchInput& input, const problems::Problem& problem,
+                      const physics::SimulationOptions& options, int threads, std::ostream& out);
+
+}  // namespace cueplan::cli

@@ -1,0 +1,590 @@
+#include "simulate_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/problems/problem.hpp"
+#include "exit_codes.hpp"
+#include "output_file.hpp"
+#include "rebound_inputs.hpp"
+#include "simulate_batch.hpp"
+#include "table_drawing.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+namespace prob = cueplan::problems;
+
+constexpr const char* kCommandName = "cueplan simulate";
+
+std::string number(double value, const char* unit = nullptr) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  std::string s = buf;
+  if (unit) s += std::string(" ") + unit;
+  return s;
+}
+
+std::string point(phys::Vec2 p) { return "(" + number(p.x) + ", " + number(p.y) + ") m"; }
+
+// The impact method simulate() will use for these options: its own rule (shot.hpp,
+// SimulationOptions), so the report names what answered rather than what was asked.
+phys::ImpactMethod method_in_use(const phys::SimulationOptions& options,
+                                 const phys::CushionParams& params) {
+  if (options.impact_method == phys::ImpactMethod::paper) return phys::ImpactMethod::paper;
+  if (options.impact_method == phys::ImpactMethod::table && options.table != nullptr &&
+      options.table->covers(params) &&
+      options.table->measured_error().max_state_relative <= options.impact_accuracy)
+    return phys::ImpactMethod::table;
+  return phys::ImpactMethod::exact;
+}
+
+std::string method_text(const phys::SimulationOptions& options, const phys::CushionParams& params) {
+  switch (method_in_use(options, params)) {
+    case phys::ImpactMethod::paper:
+      return "paper (the paper's fixed-step scheme, 5000 impulse steps per cushion impact)";
+    case phys::ImpactMethod::table: {
+      char buf[256];
+      std::snprintf(
+          buf, sizeof buf,
+          "table (measured error %.3g of the speed, within the impact accuracy %.3g; the exact "
+          "method in the %.3g %% of cells where interpolation is inaccurate)",
+          options.table->measured_error().max_state_relative, options.impact_accuracy,
+          100.0 * options.table->fallback_fraction());
+      return buf;
+    }
+    case phys::ImpactMethod::exact:
+      break;
+  }
+  return "exact (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
+}
+
+// The four cushions by their nose lines (ShotEvent::cushion numbers them).
+std::string cushion_name(const phys::Scene& scene, int cushion) {
+  switch (cushion) {
+    case 0:
+      return "y = 0";
+    case 1:
+      return "x = " + number(scene.length);
+    case 2:
+      return "y = " + number(scene.width);
+    case 3:
+      return "x = 0";
+    default:
+      return "?";
+  }
+}
+
+double speed_of(const phys::ShotEvent& e) { return std::hypot(e.velocity.x, e.velocity.y); }
+
+// How the ball moves after an event: the path piece that starts there, if any.
+const char* motion_after(const phys::ShotResult& r, const phys::ShotEvent& e) {
+  for (const phys::PathSegment& s : r.path)
+    if (s.t0 == e.time) return phys::to_string(s.motion);
+  return "-";
+}
+
+std::string event_detail(const prob::Problem& problem, const phys::ShotEvent& e) {
+  const phys::Scene& scene = problem.scene;
+  switch (e.type) {
+    case phys::EventType::cushion: {
+      std::string text = "cushion " + cushion_name(scene, e.cushion) + ", normal speed " +
+                         number(e.normal_speed, "m/s");
+      if (e.normal_speed > scene.ball_and_cushion.rigid_speed_limit)
+        text += " (above the rigid-cushion limit)";
+      return text;
+    }
+    case phys::EventType::pocket:
+      return "pocket " + std::to_string(e.index) + " at " +
+             point(scene.pockets.at(static_cast<size_t>(e.index)).centre);
+    case phys::EventType::obstacle:
+      return "obstacles[" + std::to_string(e.index) + "] at " +
+             point(scene.obstacles.at(static_cast<size_t>(e.index)));
+    case phys::EventType::spin_stop:
+      return "sidespin spent";
+    default:
+      return {};
+  }
+}
+
+std::string status_text(const phys::ShotResult& r) {
+  std::string text = phys::to_string(r.status);
+  switch (r.status) {
+    case phys::ShotStatus::rest:
+      return text + " (came to rest on the table)";
+    case phys::ShotStatus::pocketed:
+      return text + " (entered pocket " + std::to_string(r.events.back().index) + ")";
+    case phys::ShotStatus::hit_obstacle:
+      return text + " (touched obstacles[" + std::to_string(r.events.back().index) + "])";
+    default:
+      return text + ": " + r.message;
+  }
+}
+
+std::string rigid_limit_warning(const prob::Problem& problem, const phys::ShotResult& r) {
+  return "warning: a cushion normal speed of " + number(r.max_cushion_normal_speed, "m/s") +
+         " exceeded the rigid-cushion limit of " +
+         number(problem.scene.ball_and_cushion.rigid_speed_limit, "m/s") +
+         "; the model trusts a rigid cushion only below it";
+}
+
+// Everything the text and JSON reports say about the target.
+struct TargetReport {
+  double miss = 0.0;  // m; +inf when the ball did not come to rest on the table
+  bool in_zone = false;
+  bool reaches = false;
+  std::string limits;  // empty when the shot lies within the problem's limits
+};
+
+TargetReport target_report(const prob::Problem& problem, const phys::Shot& shot,
+                           const phys::ShotResult& r) {
+  TargetReport t;
+  t.miss = prob::miss_distance(problem, r);
+  t.in_zone = t.miss <= problem.tolerance;
+  t.reaches = prob::reaches_target(problem, r);
+  t.limits = prob::check_shot(problem.limits, shot);
+  return t;
+}
+
+std::string cushions_allowed(const prob::Limits& limits) {
+  return limits.cushions_min == limits.cushions_max
+             ? std::to_string(limits.cushions_min)
+             : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
+}
+
+void write_text(std::ostream& out, const prob::Problem& problem, const phys::Shot& shot,
+                const phys::SimulationOptions& options, const phys::ShotResult& r,
+                const std::string& svg_file) {
+  const auto line = [&](const char* label, const std::string& text) {
+    char buf[24];
+    std::snprintf(buf, sizeof buf, "%-16s", label);
+    out << buf << text << '\n';
+  };
+  const phys::Scene& scene = problem.scene;
+  const double spin_unit = shot.speed / scene.radius();  // rad/s per unit of k
+  const TargetReport target = target_report(problem, shot, r);
+
+  line("problem", problem.name + "  (" + problem.source + ")");
+  line("shot", "V = " + number(shot.speed, "m/s") + " at aim " + number(shot.aim_deg, "deg") +
+                   ", k_T = " + number(shot.topspin_k) +
+                   " (w_T = " + number(shot.topspin_k * spin_unit, "rad/s") +
+                   "), k_S = " + number(shot.sidespin_k) +
+                   " (w_S = " + number(shot.sidespin_k * spin_unit, "rad/s") + ")");
+  line("cue ball",
+       "x = " + number(problem.cue_ball.x, "m") + ", y = " + number(problem.cue_ball.y, "m"));
+  line("status", status_text(r));
+  line("final position",
+       "x = " + number(r.final_position.x, "m") + ", y = " + number(r.final_position.y, "m"));
+  line("duration", number(r.duration, "s"));
+  line("cushion hits", std::to_string(r.cushion_hits));
+  line("pocketed", r.pocketed ? "yes" : "no");
+  line("hit obstacle", r.hit_obstacle ? "yes" : "no");
+  line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
+                     ", tolerance " + number(problem.tolerance, "m"));
+  if (std::isfinite(target.miss))
+    line("miss distance",
+         number(target.miss, "m") +
+             (target.in_zone ? ": inside the target zone" : ": outside the target zone"));
+  else
+    line("miss distance", "none: the ball did not come to rest on the table");
+  line("solves problem",
+       std::string(target.reaches ? "yes" : "no") + ": " +
+           (target.in_zone ? "at rest in the target zone" : "not at rest in the target zone") +
+           " after " + std::to_string(r.cushion_hits) + " cushion" +
+           (r.cushion_hits == 1 ? "" : "s") + " (the problem allows " +
+           cushions_allowed(problem.limits) + ")");
+  line("limits", target.limits.empty() ? "the shot lies within the problem's limits"
+                                       : "outside the problem's limits: " + target.limits);
+  line("method", method_text(options, scene.ball_and_cushion));
+  if (r.cushion_hits > 0)
+    line("cushion speed", "max normal speed " + number(r.max_cushion_normal_speed, "m/s") +
+                              " (rigid-cushion limit " +
+                              number(scene.ball_and_cushion.rigid_speed_limit, "m/s") + ")");
+  if (!svg_file.empty()) line("drawing", svg_file);
+
+  line("events", std::to_string(r.events.size()) + " (speed and motion just after each event)");
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "  %3s  %-14s %9s %9s %9s %11s  %-8s %s", "#", "event", "t (s)",
+                "x (m)", "y (m)", "v (m/s)", "then", "detail");
+  out << buf << '\n';
+  for (size_t i = 0; i < r.events.size(); ++i) {
+    const phys::ShotEvent& e = r.events[i];
+    std::snprintf(buf, sizeof buf, "  %3zu  %-14s %9.4f %9.4f %9.4f %11.4f  %-8s ", i,
+                  phys::to_string(e.type), e.time, e.position.x, e.position.y, speed_of(e),
+                  motion_after(r, e));
+    std::string row = buf + event_detail(problem, e);
+    while (!row.empty() && row.back() == ' ') row.pop_back();
+    out << row << '\n';
+  }
+  if (r.rigid_limit_exceeded) out << rigid_limit_warning(problem, r) << '\n';
+}
+
+nlohmann::ordered_json vec(phys::Vec2 v) { return {v.x, v.y}; }
+
+void write_json(std::ostream& out, const prob::Problem& problem, const phys::Shot& shot,
+                const phys::SimulationOptions& options, const phys::ShotResult& r,
+                const std::string& svg_file) {
+  using nlohmann::ordered_json;
+  const phys::Scene& scene = problem.scene;
+  const TargetReport target = target_report(problem, shot, r);
+
+  ordered_json events = ordered_json::array();
+  for (const phys::ShotEvent& e : r.events) {
+    ordered_json j;
+    j["type"] = phys::to_string(e.type);
+    j["time"] = e.time;
+    j["position"] = vec(e.position);
+    j["velocity"] = vec(e.velocity);
+    j["speed"] = speed_of(e);
+    j["spin"] = {e.spin.x, e.spin.y, e.spin.z};
+    j["motion_after"] = motion_after(r, e);
+    if (e.type == phys::EventType::cushion) {
+      j["cushion"] = e.cushion;
+      j["cushion_line"] = cushion_name(scene, e.cushion);
+      j["normal_speed"] = e.normal_speed;
+    }
+    if (e.type == phys::EventType::pocket) j["pocket"] = e.index;
+    if (e.type == phys::EventType::obstacle) j["obstacle"] = e.index;
+    events.push_back(std::move(j));
+  }
+  ordered_json path = ordered_json::array();
+  for (const phys::PathSegment& s : r.path)
+    path.push_back({{"t0", s.t0},
+                    {"t1", s.t1},
+                    {"p0", vec(s.p0)},
+                    {"v0", vec(s.v0)},
+                    {"accel", vec(s.accel)},
+                    {"motion", phys::to_string(s.motion)}});
+
+  ordered_json j;
+  j["problem"] = {{"name", problem.name}, {"source", problem.source}};
+  j["shot"] = {{"speed", shot.speed},
+               {"aim_deg", shot.aim_deg},
+               {"topspin_k", shot.topspin_k},
+               {"sidespin_k", shot.sidespin_k}};
+  j["status"] = phys::to_string(r.status);
+  j["message"] = r.message;
+  if (r.rigid_limit_exceeded) j["warning"] = rigid_limit_warning(problem, r);
+  j["final_position"] = vec(r.final_position);
+  j["duration"] = r.duration;
+  j["cushion_hits"] = r.cushion_hits;
+  j["pocketed"] = r.pocketed;
+  j["hit_obstacle"] = r.hit_obstacle;
+  j["cue_ball"] = vec(problem.cue_ball);
+  j["target"] = vec(problem.target);
+  j["tolerance"] = problem.tolerance;
+  // null when the ball did not come to rest on the table (JSON has no infinity)
+  j["miss_distance"] = std::isfinite(target.miss) ? ordered_json(target.miss) : ordered_json();
+  j["in_target_zone"] = target.in_zone;
+  j["reaches_target"] = target.reaches;
+  j["within_limits"] = target.limits.empty();
+  j["limits_message"] = target.limits;
+  j["max_cushion_normal_speed"] = r.max_cushion_normal_speed;
+  j["rigid_limit_exceeded"] = r.rigid_limit_exceeded;
+  j["method"] = phys::to_string(method_in_use(options, scene.ball_and_cushion));
+  j["method_requested"] = phys::to_string(options.impact_method);
+  j["impact_accuracy"] = options.impact_accuracy;
+  j["max_events"] = options.max_events;
+  if (!svg_file.empty()) j["svg"] = svg_file;
+  j["events"] = events;
+  j["path"] = path;
+  j["units"] = {{"frame",
+                 "table: origin where the cushion noses x = 0 and y = 0 meet, x along the "
+                 "length, y along the width"},
+                {"position", "m"},
+                {"time", "s"},
+                {"duration", "s"},
+                {"velocity", "m/s"},
+                {"speed", "m/s"},
+                {"spin", "rad/s"},
+                {"accel", "m/s^2"},
+                {"aim_deg", "deg from +x, counter-clockwise"},
+                {"topspin_k", "k_T = w_T R / V"},
+                {"sidespin_k", "k_S = w_S R / V, > 0 right spin"},
+                {"tolerance", "m"},
+                {"miss_distance", "m"},
+                {"impact_accuracy", "relative to the speed"}};
+  out << j.dump(2) << '\n';
+}
+
+// The title and caption of the drawing: the shot, then what came of it.
+TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
+                        const phys::SimulationOptions& options, const phys::ShotResult& r) {
+  TableDrawing d;
+  d.scene = problem.scene;
+  d.cue_ball = problem.cue_ball;
+  d.target = TargetZone{problem.target, problem.tolerance};
+  d.paths.push_back({r.path, r.events, false});
+
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "%s: V = %.4g m/s, aim %.4g\u00b0, k_{T} = %.3g, k_{S} = %.3g",
+                problem.name.c_str(), shot.speed, shot.aim_deg, shot.topspin_k, shot.sidespin_k);
+  d.title = buf;
+
+  const TargetReport target = target_report(problem, shot, r);
+  const std::string cushions =
+      std::to_string(r.cushion_hits) + (r.cushion_hits == 1 ? " cushion" : " cushions");
+  std::string outcome;
+  switch (r.status) {
+    case phys::ShotStatus::rest:
+      std::snprintf(buf, sizeof buf,
+                    "At rest at (%.4f, %.4f) m after %s and %.3g s; %.4g mm from the target "
+                    "(tolerance %.4g mm): %s the target zone%s.",
+                    r.final_position.x, r.final_position.y, cushions.c_str(), r.duration,
+                    1000.0 * target.miss, 1000.0 * problem.tolerance,
+                    target.in_zone ? "inside" : "outside",
+                    target.reaches ? ", problem solved" : "");
+      break;
+    case phys::ShotStatus::pocketed:
+    case phys::ShotStatus::hit_obstacle:
+      std::snprintf(buf, sizeof buf, "%s at (%.4f, %.4f) m after %s and %.3g s.",
+                    r.pocketed ? "Pocketed" : "Hit an obstacle ball", r.final_position.x,
+                    r.final_position.y, cushions.c_str(), r.duration);
+      break;
+    default:
+      std::snprintf(buf, sizeof buf, "Stopped (%s) after %s: %s", phys::to_string(r.status),
+                    cushions.c_str(), r.message.c_str());
+  }
+  outcome = buf;
+  if (r.rigid_limit_exceeded) outcome += " Rigid-cushion limit exceeded.";
+  d.caption.push_back(outcome);
+
+  const phys::CushionParams& b = problem.scene.ball_and_cushion;
+  std::snprintf(buf, sizeof buf,
+                "Table %.4g \u00d7 %.4g m between the cushion noses, ball R = %.4g mm, "
+                "cushion impacts: %s.",
+                problem.scene.length, problem.scene.width, 1000.0 * b.radius,
+                phys::to_string(method_in_use(options, b)));
+  d.caption.push_back(buf);
+  return d;
+}
+
+}  // namespace
+
+SimulateCommand::SimulateCommand(CLI::App& parent) {
+  command_ = parent.add_subcommand(
+      "simulate",
+      "Simulate one cue-ball shot on a problem file's table, from the strike to rest, and "
+      "report where it stops, every event and how far it lands from the target.");
+  CLI::App& c = *command_;
+
+  c.add_option("PROBLEM", args_.problem_file,
+               "Problem file (YAML, problems/README.md): table, ball, cue ball, target")
+      ->required()
+      ->type_name("FILE.yaml");
+
+  const char* stroke = "Shot";
+  c.add_option("--speed", args_.speed,
+               "Cue-ball speed V just after the strike (m/s), > 0. Required unless --batch is "
+               "given.")
+      ->type_name("m/s")
+      ->group(stroke);
+  c.add_option("--aim", args_.aim_deg,
+               "Aim phi (deg from +x, counter-clockwise; +x runs along the table's length). "
+               "Required unless --batch is given.")
+      ->type_name("deg")
+      ->group(stroke);
+  c.add_option("--topspin-k", args_.topspin_k,
+               "Topspin k_T = w_T R / V (0: centre-ball strike, the ball slides then rolls; "
+               "1: natural roll; < 0: draw)")
+      ->type_name("k_T")
+      ->capture_default_str()
+      ->group(stroke);
+  c.add_option("--sidespin-k", args_.sidespin_k,
+               "Sidespin k_S = w_S R / V (> 0: right spin, counter-clockwise seen from above)")
+      ->type_name("k_S")
+      ->capture_default_str()
+      ->group(stroke);
+
+  const char* method = "Cushion impacts";
+  c.add_option("--method", args_.method,
+               "exact (adaptive integrator with stick/slip events), paper (the paper's "
+               "fixed-step scheme, 5000 steps) or table (precomputed surrogate: the fast path "
+               "for many shots; built once, about 30 s on 2 cores, then loaded from the cache)")
+      ->type_name("exact|paper|table")
+      ->capture_default_str()
+      ->group(method);
+  c.add_option("--accuracy", args_.accuracy,
+               "Relative error wanted from each cushion impact, in [1e-12, 0.1]. exact: its "
+               "tolerance follows it; table: the table answers only if its measured error is "
+               "within it (else exact does), and without this flag it is the table's measured "
+               "error; paper: not used. Default 1e-09 (exact)")
+      ->type_name("REL")
+      ->group(method);
+  c.add_option("--table-cache", args_.table_cache,
+               "table: directory for the cached table (default: $CUEPLAN_CACHE_DIR, else "
+               "$XDG_CACHE_HOME/cueplan, else ~/.cache/cueplan)")
+      ->type_name("DIR")
+      ->group(method);
+  c.add_option("--max-events", args_.max_events,
+               "Events (cushions, slide to roll, stops, ...) allowed before giving up, >= 1")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(method);
+
+  const char* output = "Output";
+  auto* json =
+      c.add_flag("--json", args_.json,
+                 "Print one JSON object (SI units, table frame) instead of text: final_position, "
+                 "cushion_hits, pocketed, hit_obstacle, events, duration, miss_distance, path, ...")
+          ->group(output);
+  auto* svg = c.add_option("--svg", args_.svg_file,
+                           "Also draw the table, pockets, obstacles, target zone and the ball's "
+                           "path to scale, coloured by sliding and rolling, as an SVG file")
+                  ->type_name("FILE.svg")
+                  ->group(output);
+  auto* batch =
+      c.add_option("--batch", args_.batch_file,
+                   "Simulate every row of a CSV file with header "
+                   "'speed,aim_deg,topspin_k,sidespin_k' (m/s, deg, k_T, k_S) and write CSV to "
+                   "stdout: the input columns, then final_x,final_y (m),cushion_hits,pocketed,"
+                   "hit_obstacle (1/0),duration (s),miss_distance (m; inf unless at rest),"
+                   "reaches_target (1/0),status,message. A bad row gets its own error status.")
+          ->type_name("FILE.csv")
+          ->group(output);
+  c.add_option("--threads", args_.threads,
+               "Batch: threads to spread the rows over (0: one per core); the output is the "
+               "same for any count. Also used to build a table.")
+      ->type_name("N")
+      ->capture_default_str()
+      ->needs(batch)
+      ->group(output);
+  batch->excludes(json);
+  batch->excludes(svg);
+  for (const char* flag : {"--speed", "--aim", "--topspin-k", "--sidespin-k"})
+    batch->excludes(c.get_option(flag));
+
+  c.footer(
+      "Frame: the origin is where the cushion noses x = 0 and y = 0 meet; x runs along the "
+      "length, y along the width; cushions are named by their nose lines.\n"
+      "Status: rest, pocketed, hit_obstacle, event_limit (more than --max-events events) or "
+      "impact_failed. A cushion met faster than 2.5 m/s along its normal is solved but "
+      "flagged: the rigid-cushion model is not trusted there.\n"
+      "Exit codes: 0 simulated (at rest, pocketed or against an obstacle), 1 the simulation "
+      "stopped without an outcome (event_limit, impact_failed), 2 bad input.\n"
+      "Example: cueplan simulate problems/one_rail_position.yaml --speed 1.002 --aim -60.36 "
+      "--topspin-k 0.8 --sidespin-k 0");
+}
+
+bool SimulateCommand::selected() const { return command_->parsed(); }
+
+bool SimulateCommand::given(const char* flag) const { return command_->count(flag) > 0; }
+
+std::string SimulateCommand::read_options(phys::SimulationOptions* options) const {
+  if (!phys::parse_method(args_.method, &options->impact_method))
+    return "--method must be one of exact, paper, table, got '" + args_.method + "'";
+  if (!std::isfinite(args_.accuracy) || !(args_.accuracy >= 1e-12) || !(args_.accuracy <= 0.1))
+    return "--accuracy must lie in [1e-12, 0.1], got " + number(args_.accuracy);
+  options->impact_accuracy = args_.accuracy;
+  if (args_.max_events < 1)
+    return "--max-events must be at least 1, got " + std::to_string(args_.max_events);
+  options->max_events = args_.max_events;
+  if (args_.threads < 0)
+    return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
+  return {};
+}
+
+std::string SimulateCommand::read_shot(phys::Shot* shot) const {
+  if (!given("--speed")) return "--speed is required (m/s) unless --batch is given";
+  if (!given("--aim")) return "--aim is required (deg) unless --batch is given";
+  *shot = {args_.speed, args_.aim_deg, args_.topspin_k, args_.sidespin_k};
+  return check_shot_inputs(*shot, kShotFlagNames);
+}
+
+int SimulateCommand::prepare_table(const prob::Problem& problem, phys::ImpactTable* table,
+                                   phys::SimulationOptions* options, std::ostream& err) const {
+  const phys::CushionParams& params = problem.scene.ball_and_cushion;
+  const std::string cache_dir =
+      args_.table_cache.empty() ? phys::default_table_cache_dir() : args_.table_cache;
+  if (std::string why = ensure_directory(cache_dir); !why.empty()) {
+    err << kCommandName << ": --table-cache: " << why << '\n';
+    return kExitUsage;
+  }
+  // A first build takes a while: say so before it starts, not only after.
+  const std::filesystem::path file =
+      std::filesystem::path(cache_dir) / phys::ImpactTable::cache_file_name(params, {});
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    err << kCommandName << ": building the impact table for this cushion (once; about 30 s on "
+        << "2 cores), to be cached in " << cache_dir << '\n';
+  std::string note;
+  std::string error;
+  std::optional<phys::ImpactTable> acquired =
+      acquire_table(params, cache_dir, args_.threads, &note, &error);
+  if (!acquired) {
+    err << kCommandName << ": " << error << '\n';
+    return kExitFailed;
+  }
+  if (!note.empty()) err << kCommandName << ": " << note << '\n';
+  *table = std::move(*acquired);
+  options->table = table;
+  // Asked for the table without an accuracy: the table's own measured error is it.
+  const double measured = table->measured_error().max_state_relative;
+  if (!given("--accuracy")) options->impact_accuracy = std::max(options->impact_accuracy, measured);
+  if (method_in_use(*options, params) != phys::ImpactMethod::table)
+    err << kCommandName << ": the table's measured error " << number(measured)
+        << " is above --accuracy " << number(options->impact_accuracy)
+        << "; cushion impacts use the exact method\n";
+  return kExitOk;
+}
+
+int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
+  const auto usage = [&](const std::string& why) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  };
+
+  phys::SimulationOptions options;
+  if (std::string why = read_options(&options); !why.empty()) return usage(why);
+
+  // The shot(s) and the problem: whole-input errors come before any table is built.
+  const bool batch = given("--batch");
+  ShotBatchInput batch_input;
+  phys::Shot shot;
+  if (batch) {
+    batch_input = read_shot_batch(args_.batch_file);
+    if (!batch_input.error.empty()) return usage(batch_input.error);
+  } else if (std::string why = read_shot(&shot); !why.empty()) {
+    return usage(why);
+  }
+  const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
+  if (!loaded.ok()) return usage(loaded.error);
+  const prob::Problem& problem = *loaded.problem;
+
+  phys::ImpactTable table;
+  if (options.impact_method == phys::ImpactMethod::table)
+    if (int code = prepare_table(problem, &table, &options, err); code != kExitOk) return code;
+
+  if (batch) {
+    write_shot_batch(batch_input, problem, options, args_.threads, out);
+    return out ? kExitOk : kExitFailed;
+  }
+
+  const phys::ShotResult result = phys::simulate(problem.scene, problem.cue_ball, shot, options);
+  if (result.status == phys::ShotStatus::invalid_input) return usage(result.message);
+
+  // The drawing first: if it cannot be written, nothing else is printed.
+  if (!args_.svg_file.empty()) {
+    const std::string svg = render_table_svg(drawing_of(problem, shot, options, result));
+    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+      return usage("--svg: " + why);
+  }
+  if (args_.json)
+    write_json(out, problem, shot, options, result, args_.svg_file);
+  else
+    write_text(out, problem, shot, options, result, args_.svg_file);
+  const bool outcome = result.status == phys::ShotStatus::rest ||
+                       result.status == phys::ShotStatus::pocketed ||
+                       result.status == phys::ShotStatus::hit_obstacle;
+  return outcome ? kExitOk : kExitFailed;
+}
+
+}  // namespace cueplan::cli

@@ -1,0 +1,72 @@
+// `cueplan simulate PROBLEM`: one cue-ball shot (or a CSV batch of them) on a problem
+// file's scene through physics::simulate, reported as text, JSON or CSV against the
+// problem's target, and drawn to scale as SVG.
+#pragma once
+
+#include <cmath>
+#include <iosfwd>
+#include <string>
+
+#include "cueplan/physics/shot.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace cueplan::physics {
+class ImpactTable;
+}
+
+namespace cueplan::problems {
+struct Problem;
+}
+
+namespace cueplan::cli {
+
+// What the command line asked for, in the flags' units.
+struct SimulateArgs {
+  std::string problem_file;  // PROBLEM, a YAML problem file
+  double speed = NAN;        // m/s, --speed
+  double aim_deg = NAN;      // deg from +x, counter-clockwise, --aim
+  double topspin_k = 0.0;    // --topspin-k, k_T; 0 is a centre-ball strike
+  double sidespin_k = 0.0;   // --sidespin-k, k_S; > 0 right spin
+  std::string method = "exact";
+  double accuracy = 1e-9;   // relative error wanted from each cushion impact
+  std::string table_cache;  // empty: physics::default_table_cache_dir()
+  int max_events = 200;
+  bool json = false;
+  std::string svg_file;  // empty: no drawing
+  std::string batch_file;
+  int threads = 0;  // batch (and table build) threads; 0: one per core
+};
+
+class SimulateCommand {
+ public:
+  // Registers `simulate` and its flags on `parent`; the flags write into this object,
+  // so it must outlive the parse and stay where it is.
+  explicit SimulateCommand(CLI::App& parent);
+  SimulateCommand(const SimulateCommand&) = delete;
+  SimulateCommand& operator=(const SimulateCommand&) = delete;
+
+  bool selected() const;
+
+  // Runs the parsed command; returns an ExitCode.
+  int run(std::ostream& out, std::ostream& err) const;
+
+ private:
+  bool given(const char* flag) const;
+
+  // Stages of run(), in order; each returns empty or the one-line reason to stop.
+  std::string read_options(physics::SimulationOptions* options) const;
+  std::string read_shot(physics::Shot* shot) const;
+  // With --method table: loads or builds the table for the scene's cushion and sets
+  // options->table (and the accuracy, unless --accuracy was given). Notes go to `err`.
+  // Returns an ExitCode: kExitOk, or the code to stop with (its line already written).
+  int prepare_table(const problems::Problem& problem, physics::ImpactTable* table,
+                    physics::SimulationOptions* options, std::ostream& err) const;
+
+  CLI::App* command_ = nullptr;
+  SimulateArgs args_;
+};
+
+}  // namespace cueplan::cli

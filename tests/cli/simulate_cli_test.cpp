@@ -1,0 +1,581 @@
+// Tests of `cueplan simulate`, run as a separate process the way a user runs it: what it
+// prints and draws, its exit codes, and that its numbers are the simulator's.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/shot.hpp"
+#include "cueplan/problems/problem.hpp"
+
+#ifndef CUEPLAN_BINARY
+#error "CUEPLAN_BINARY must name the cueplan executable"
+#endif
+#ifndef CUEPLAN_PROBLEMS_DIR
+#error "CUEPLAN_PROBLEMS_DIR must name the directory of the shipped problem files"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace phys = cueplan::physics;
+namespace prob = cueplan::problems;
+using nlohmann::json;
+
+// A scratch directory for this test program, removed at exit.
+class ScratchDir {
+ public:
+  ScratchDir()
+      : path_(fs::temp_directory_path() / ("cueplan_simulate_test_" + std::to_string(::getpid()))) {
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+const fs::path& scratch() {
+  static const ScratchDir dir;  // one per test program; never written after creation
+  return dir.path();
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string problem_path(const std::string& stem) {
+  return std::string(CUEPLAN_PROBLEMS_DIR) + "/" + stem + ".yaml";
+}
+
+struct ProcessResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `cueplan <args>` through the shell (args are shell words) and collects its
+// exit code, stdout and stderr.
+ProcessResult cueplan(const std::string& args) {
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string stem = std::string(test->test_suite_name()) + "." + test->name();
+  std::replace_if(
+      stem.begin(), stem.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); },
+      '_');
+  const fs::path out = scratch() / (stem + ".out");
+  const fs::path err = scratch() / (stem + ".err");
+  const std::string command = std::string("'") + CUEPLAN_BINARY + "' " + args + " >'" +
+                              out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  ProcessResult run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = read_text(out);
+  run.err = read_text(err);
+  return run;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// Splits a CSV line; quoted fields (the message column) keep their commas.
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted)
+      fields.emplace_back();
+    else
+      fields.back() += c;
+  }
+  return fields;
+}
+
+// A CSV text as rows of named cells.
+std::vector<std::map<std::string, std::string>> csv_rows(const std::string& text) {
+  const std::vector<std::string> lines = lines_of(text);
+  std::vector<std::map<std::string, std::string>> rows;
+  if (lines.empty()) return rows;
+  const std::vector<std::string> header = csv_fields(lines[0]);
+  for (size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> cells = csv_fields(lines[i]);
+    std::map<std::string, std::string> row;
+    for (size_t c = 0; c < header.size() && c < cells.size(); ++c) row[header[c]] = cells[c];
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+size_t count_of(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+prob::Problem shipped(const std::string& stem) {
+  const prob::LoadResult loaded = prob::load_problem(problem_path(stem));
+  EXPECT_TRUE(loaded.ok()) << loaded.error;
+  return loaded.ok() ? *loaded.problem : prob::Problem{};
+}
+
+// The simulator called directly, with the command's defaults (exact method, accuracy
+// 1e-9, 200 events).
+phys::ShotResult library_shot(const prob::Problem& p, const phys::Shot& shot,
+                              const phys::SimulationOptions& options = {}) {
+  return phys::simulate(p.scene, p.cue_ball, shot, options);
+}
+
+std::string g6(double value, const char* unit) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g %s", value, unit);
+  return buf;
+}
+
+// The shot the one-rail problem file records as solving it.
+constexpr const char* kOneRailShot = "--speed 1.002 --aim -60.36 --topspin-k 0.8 --sidespin-k 0";
+const phys::Shot kOneRail{1.002, -60.36, 0.8, 0.0};
+
+std::string one_rail_command(const std::string& extra = {}) {
+  return "simulate '" + problem_path("one_rail_position") + "' " + kOneRailShot +
+         (extra.empty() ? "" : " " + extra);
+}
+
+// ---------------------------------------------------------------------------
+// text and JSON
+
+TEST(Simulate, SpelledOutCommandPrintsFinalPositionAndEventsWithUnits) {
+  const ProcessResult run = cueplan(one_rail_command());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");
+  const phys::ShotResult expected = library_shot(shipped("one_rail_position"), kOneRail);
+  ASSERT_EQ(expected.status, phys::ShotStatus::rest);
+  for (const std::string& needle :
+       {std::string("one-rail position"), std::string("final position"),
+        "x = " + g6(expected.final_position.x, "m"), "y = " + g6(expected.final_position.y, "m"),
+        g6(expected.duration, "s"), std::string("cushion hits    1"),
+        std::string("status          rest"), std::string("pocketed        no"),
+        std::string("hit obstacle    no"), std::string("miss distance"),
+        std::string("inside the target zone"), std::string("tolerance 0.02 m"),
+        std::string("t (s)"), std::string("x (m)"), std::string("v (m/s)"), std::string("m/s"),
+        std::string("exact")})
+    EXPECT_NE(run.out.find(needle), std::string::npos) << "missing '" << needle << "' in\n"
+                                                       << run.out;
+  // One table row per event, in order, named as the library names them.
+  const std::vector<std::string> lines = lines_of(run.out);
+  size_t row = 0;
+  for (const std::string& line : lines) {
+    if (row < expected.events.size() &&
+        line.find(std::string(" ") + phys::to_string(expected.events[row].type) + " ") !=
+            std::string::npos &&
+        line.rfind("  ", 0) == 0)
+      ++row;
+  }
+  EXPECT_EQ(row, expected.events.size()) << run.out;
+  EXPECT_NE(run.out.find("cushion y = 0, normal speed"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("warning"), std::string::npos);
+}
+
+TEST(Simulate, JsonEqualsAnIndependentLibrarySimulation) {
+  const ProcessResult run = cueplan(one_rail_command("--json"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  const prob::Problem problem = shipped("one_rail_position");
+  const phys::ShotResult expected = library_shot(problem, kOneRail);
+
+  // The same code on the same input: equal to the last bits (JSON keeps 17 digits).
+  EXPECT_EQ(j.at("status"), "rest");
+  EXPECT_DOUBLE_EQ(j.at("final_position")[0].get<double>(), expected.final_position.x);
+  EXPECT_DOUBLE_EQ(j.at("final_position")[1].get<double>(), expected.final_position.y);
+  EXPECT_DOUBLE_EQ(j.at("duration").get<double>(), expected.duration);
+  EXPECT_EQ(j.at("cushion_hits").get<int>(), expected.cushion_hits);
+  EXPECT_EQ(j.at("pocketed").get<bool>(), expected.pocketed);
+  EXPECT_EQ(j.at("hit_obstacle").get<bool>(), expected.hit_obstacle);
+  ASSERT_EQ(j.at("events").size(), expected.events.size());
+  for (size_t i = 0; i < expected.events.size(); ++i) {
+    const json& e = j["events"][i];
+    EXPECT_EQ(e.at("type"), phys::to_string(expected.events[i].type)) << i;
+    EXPECT_DOUBLE_EQ(e.at("time").get<double>(), expected.events[i].time) << i;
+    EXPECT_DOUBLE_EQ(e.at("position")[0].get<double>(), expected.events[i].position.x) << i;
+    EXPECT_DOUBLE_EQ(e.at("position")[1].get<double>(), expected.events[i].position.y) << i;
+  }
+  EXPECT_EQ(j.at("path").size(), expected.path.size());
+
+  // Against the problem: the recorded shot solves it.
+  EXPECT_EQ(j.at("problem").at("name"), problem.name);
+  EXPECT_NEAR(j.at("miss_distance").get<double>(), prob::miss_distance(problem, expected), 1e-15);
+  EXPECT_TRUE(j.at("in_target_zone").get<bool>());
+  EXPECT_TRUE(j.at("reaches_target").get<bool>());
+  EXPECT_TRUE(j.at("within_limits").get<bool>());
+  EXPECT_EQ(j.at("method"), "exact");
+  EXPECT_EQ(j.at("shot").at("aim_deg").get<double>(), -60.36);
+  EXPECT_EQ(j.at("units").at("position"), "m");
+}
+
+// The paper scheme reaches the simulator too, and its answer is close to the exact one.
+TEST(Simulate, PaperMethodIsTheLibrarysPaperMethod) {
+  const ProcessResult run = cueplan(one_rail_command("--method paper --json"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  phys::SimulationOptions options;
+  options.impact_method = phys::ImpactMethod::paper;
+  const prob::Problem problem = shipped("one_rail_position");
+  const phys::ShotResult paper = library_shot(problem, kOneRail, options);
+  const phys::ShotResult exact = library_shot(problem, kOneRail);
+  EXPECT_EQ(j.at("method"), "paper");
+  EXPECT_DOUBLE_EQ(j.at("final_position")[0].get<double>(), paper.final_position.x);
+  EXPECT_DOUBLE_EQ(j.at("final_position")[1].get<double>(), paper.final_position.y);
+  EXPECT_NEAR(paper.final_position.x, exact.final_position.x, 0.01);  // m, first-order scheme
+}
+
+TEST(Simulate, PocketedShotReportsThePocket) {
+  // Played straight at the middle pocket beyond the target, too fast to stop short.
+  const std::string args =
+      "simulate '" + problem_path("near_pocket") + "' --speed 0.7 --aim -56.84 --topspin-k 1";
+  const ProcessResult text = cueplan(args);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("status          pocketed"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("pocketed        yes"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("did not come to rest"), std::string::npos) << text.out;
+
+  const ProcessResult run = cueplan(args + " --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  EXPECT_EQ(j.at("status"), "pocketed");
+  EXPECT_TRUE(j.at("pocketed").get<bool>());
+  EXPECT_FALSE(j.at("hit_obstacle").get<bool>());
+  EXPECT_TRUE(j.at("miss_distance").is_null());
+  EXPECT_FALSE(j.at("reaches_target").get<bool>());
+  EXPECT_EQ(j.at("events").back().at("type"), "pocket");
+  EXPECT_EQ(j.at("events").back().at("pocket").get<int>(), 1);  // the bottom middle pocket
+}
+
+TEST(Simulate, ObstacleHitReportsTheObstacle) {
+  // Straight at the wall of balls across the direct route.
+  const std::string args =
+      "simulate '" + problem_path("blocked_direct_route") + "' --speed 1.5 --aim 0";
+  const ProcessResult text = cueplan(args);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("status          hit_obstacle"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("hit obstacle    yes"), std::string::npos) << text.out;
+
+  const ProcessResult run = cueplan(args + " --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  EXPECT_EQ(j.at("status"), "hit_obstacle");
+  EXPECT_TRUE(j.at("hit_obstacle").get<bool>());
+  EXPECT_FALSE(j.at("pocketed").get<bool>());
+  EXPECT_EQ(j.at("events").back().at("obstacle").get<int>(), 1);  // the middle ball of three
+  // It stops touching that ball: centres 2R apart.
+  const double gap = std::hypot(j["final_position"][0].get<double>() - 1.8,
+                                j["final_position"][1].get<double>() - 0.9);
+  EXPECT_NEAR(gap, 2.0 * 0.02625, 1e-9);
+}
+
+TEST(Simulate, AboveTheRigidLimitIsSimulatedAndFlagged) {
+  const std::string args = "simulate '" + problem_path("one_rail_position") +
+                           "' --speed 4.5 --aim -80 --topspin-k -1 --sidespin-k 0.5";
+  const ProcessResult text = cueplan(args);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("warning: "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("2.5 m/s"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("above the rigid-cushion limit"), std::string::npos) << text.out;
+
+  const ProcessResult run = cueplan(args + " --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  EXPECT_TRUE(j.at("rigid_limit_exceeded").get<bool>());
+  EXPECT_GT(j.at("max_cushion_normal_speed").get<double>(), 2.5);
+  EXPECT_TRUE(j.contains("warning"));
+}
+
+TEST(Simulate, EventLimitStopsWithExitOne) {
+  const ProcessResult run = cueplan(one_rail_command("--max-events 2 --json"));
+  EXPECT_EQ(run.exit_code, 1);
+  const json j = json::parse(run.out);
+  EXPECT_EQ(j.at("status"), "event_limit");
+  EXPECT_FALSE(j.at("message").get<std::string>().empty());
+}
+
+// A shot outside the problem's limits is simulated and said to be outside them.
+TEST(Simulate, ShotOutsideTheProblemLimitsIsSimulatedAndNamed) {
+  const ProcessResult run = cueplan("simulate '" + problem_path("one_rail_position") +
+                                    "' --speed 1 --aim 30 --topspin-k 1.2 --sidespin-k 0.9");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("outside the problem's limits: spin"), std::string::npos) << run.out;
+}
+
+// ---------------------------------------------------------------------------
+// --svg
+
+TEST(SimulateSvg, DrawsTheTableTargetPathAndContacts) {
+  const fs::path file = scratch() / "one_rail.svg";
+  const ProcessResult run = cueplan(one_rail_command("--svg '" + file.string() + "'"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find(file.string()), std::string::npos) << run.out;
+  const std::string svg = read_text(file);
+  // The root element is <svg>, after the XML declaration only.
+  const size_t root = svg.find("<svg");
+  ASSERT_NE(root, std::string::npos);
+  EXPECT_TRUE(svg.rfind("<?xml", 0) == 0 || root == 0);
+  EXPECT_EQ(svg.find('<', svg.find("?>") + 2), root);
+  EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+  EXPECT_EQ(count_of(svg, "<g"), count_of(svg, "</g>"));
+
+  const phys::ShotResult expected = library_shot(shipped("one_rail_position"), kOneRail);
+  EXPECT_NE(svg.find("class=\"cloth\""), std::string::npos);
+  EXPECT_NE(svg.find("class=\"cushion-band\""), std::string::npos);
+  EXPECT_EQ(count_of(svg, "class=\"pocket\""), 6u);
+  EXPECT_NE(svg.find("class=\"target-zone\""), std::string::npos);
+  EXPECT_NE(svg.find("class=\"cue-ball\""), std::string::npos);
+  EXPECT_NE(svg.find("class=\"final-position\""), std::string::npos);
+  EXPECT_NE(svg.find("<path class=\"sliding\" d=\"M"), std::string::npos);
+  EXPECT_NE(svg.find("<path class=\"rolling\" d=\"M"), std::string::npos);
+  EXPECT_EQ(count_of(svg, "class=\"cushion-contact\""), static_cast<size_t>(expected.cushion_hits));
+  EXPECT_NE(svg.find("one-rail position"), std::string::npos);
+  EXPECT_NE(svg.find(">sliding<"), std::string::npos);  // legend
+  EXPECT_NE(svg.find(">rolling<"), std::string::npos);
+  for (const auto& entry : fs::directory_iterator(scratch()))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+TEST(SimulateSvg, ObstaclesAreDrawnAndAnOpenTableHasNoPockets) {
+  const fs::path blocked = scratch() / "blocked.svg";
+  ASSERT_EQ(cueplan("simulate '" + problem_path("blocked_direct_route") +
+                    "' --speed 1.5 --aim 0 --svg '" + blocked.string() + "'")
+                .exit_code,
+            0);
+  EXPECT_EQ(count_of(read_text(blocked), "class=\"obstacle\""), 3u);
+
+  const fs::path carom = scratch() / "carom.svg";
+  ASSERT_EQ(cueplan("simulate '" + problem_path("carom_three_cushion") +
+                    "' --speed 1.75 --aim 119.1 --json --svg '" + carom.string() + "'")
+                .exit_code,
+            0);
+  const std::string svg = read_text(carom);
+  EXPECT_EQ(count_of(svg, "class=\"pocket\""), 0u);
+  EXPECT_EQ(count_of(svg, "class=\"obstacle\""), 0u);
+  EXPECT_EQ(count_of(svg, "class=\"cushion-contact\""), 3u);
+}
+
+// ---------------------------------------------------------------------------
+// --batch
+
+constexpr const char* kBatchHeader =
+    "speed,aim_deg,topspin_k,sidespin_k,final_x,final_y,cushion_hits,pocketed,hit_obstacle,"
+    "duration,miss_distance,reaches_target,status,message";
+
+TEST(SimulateBatch, EveryRowComesOutAndBadRowsAloneFail) {
+  const fs::path input = scratch() / "shots.csv";
+  write_text(input,
+             "speed,aim_deg,topspin_k,sidespin_k\n"
+             "1.002,-60.36,0.8,0\n"
+             "1,fast,0,0\n"
+             "-1,0,0,0\n"
+             "\n"
+             "1,30\n"
+             "nan,0,0,0\n"
+             "0.7,-56.84,1,0\n");
+  const ProcessResult run =
+      cueplan("simulate '" + problem_path("near_pocket") + "' --batch '" + input.string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(lines_of(run.out).at(0), kBatchHeader);
+  const auto rows = csv_rows(run.out);
+  ASSERT_EQ(rows.size(), 6u);
+  const std::vector<std::string> statuses = {"rest",        "parse_error",   "invalid_input",
+                                             "parse_error", "invalid_input", "pocketed"};
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].at("status"), statuses[i]) << "row " << i;
+    const bool simulated = statuses[i] == "rest" || statuses[i] == "pocketed";
+    EXPECT_EQ(rows[i].at("final_x").empty(), !simulated) << "row " << i;
+    EXPECT_EQ(rows[i].at("message").empty(), simulated) << "row " << i;
+  }
+  EXPECT_NE(rows[1].at("message").find("aim_deg"), std::string::npos);
+  EXPECT_NE(rows[2].at("message").find("speed"), std::string::npos);
+  EXPECT_NE(rows[3].at("message").find("line 6"), std::string::npos);  // blank line counted
+  EXPECT_EQ(rows[1].at("aim_deg"), "fast");                            // input echoed
+
+  const prob::Problem problem = shipped("near_pocket");
+  const phys::ShotResult first = library_shot(problem, {1.002, -60.36, 0.8, 0.0});
+  EXPECT_DOUBLE_EQ(std::stod(rows[0].at("final_x")), first.final_position.x);
+  EXPECT_DOUBLE_EQ(std::stod(rows[0].at("final_y")), first.final_position.y);
+  EXPECT_EQ(std::stoi(rows[0].at("cushion_hits")), first.cushion_hits);
+  EXPECT_EQ(rows[0].at("pocketed"), "0");
+  EXPECT_EQ(rows[5].at("pocketed"), "1");
+  EXPECT_EQ(rows[5].at("hit_obstacle"), "0");
+  EXPECT_EQ(rows[5].at("miss_distance"), "inf");
+}
+
+TEST(SimulateBatch, OutputIsTheSameForAnyThreadCount) {
+  const fs::path input = scratch() / "many.csv";
+  std::string text = "speed,aim_deg,topspin_k,sidespin_k\n";
+  for (int i = 0; i < 40; ++i)
+    text += std::to_string(0.4 + 0.1 * i) + "," + std::to_string(-170.0 + 9.0 * i) + "," +
+            std::to_string(-1.0 + 0.05 * i) + "," + std::to_string(0.8 - 0.04 * i) + "\n";
+  write_text(input, text);
+  const std::string args =
+      "simulate '" + problem_path("blocked_direct_route") + "' --batch '" + input.string() + "'";
+  const ProcessResult one = cueplan(args + " --threads 1");
+  const ProcessResult two = cueplan(args + " --threads 2");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_EQ(lines_of(one.out).size(), 41u);
+  EXPECT_EQ(one.out, two.out);  // deliberate exact comparison: determinism
+}
+
+TEST(SimulateBatch, WrongHeaderIsAWholeCommandError) {
+  const fs::path input = scratch() / "wrong_header.csv";
+  write_text(input, "speed,angle_deg,topspin_k,sidespin_k\n1,45,1,0\n");
+  const ProcessResult run = cueplan("simulate '" + problem_path("one_rail_position") +
+                                    "' --batch '" + input.string() + "'");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.out, "");
+  EXPECT_EQ(lines_of(run.err).size(), 1u);
+  EXPECT_NE(run.err.find("speed,aim_deg,topspin_k,sidespin_k"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------
+// bad input
+
+struct BadInput {
+  const char* name;
+  const char* args;  // after `simulate`; {one_rail} and {malformed} stand for files
+  const char* what;  // the thing the one-line message must name
+};
+
+// gtest prints a parameter with PrintTo: the case name instead of its bytes.
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
+// A problem file whose table length is negative, on its line 3.
+std::string malformed_problem() {
+  const fs::path file = scratch() / "malformed.yaml";
+  write_text(file,
+             "name: malformed\n"
+             "table:\n"
+             "  length: -2\n"
+             "cue_ball: [0.5, 0.5]\n"
+             "target: [1.0, 0.5]\n");
+  return file.string();
+}
+
+std::string expand(std::string args) {
+  const auto replace = [&](const std::string& key, const std::string& value) {
+    for (size_t at = args.find(key); at != std::string::npos; at = args.find(key))
+      args.replace(at, key.size(), "'" + value + "'");
+  };
+  replace("{one_rail}", problem_path("one_rail_position"));
+  replace("{malformed}", malformed_problem());
+  return args;
+}
+
+class SimulateBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(SimulateBadInput, ExitsTwoWithOneLineNamingIt) {
+  const ProcessResult run = cueplan("simulate " + expand(GetParam().args));
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.out, "");
+  const std::vector<std::string> lines = lines_of(run.err);
+  ASSERT_EQ(lines.size(), 1u) << run.err;
+  EXPECT_EQ(lines[0].rfind("cueplan", 0), 0u) << lines[0];
+  EXPECT_NE(lines[0].find(GetParam().what), std::string::npos) << lines[0];
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, SimulateBadInput,
+    ::testing::Values(
+        BadInput{"MissingProblemFile", "/nonexistent/problem.yaml --speed 1 --aim 0",
+                 "/nonexistent/problem.yaml"},
+        BadInput{"MalformedProblemFile", "{malformed} --speed 1 --aim 0",
+                 "malformed.yaml:3: table.length"},
+        BadInput{"NoProblem", "--speed 1 --aim 0", "PROBLEM"},
+        BadInput{"NanSpeed", "{one_rail} --speed nan --aim 0", "--speed"},
+        BadInput{"NegativeSpeed", "{one_rail} --speed -1 --aim 0", "--speed"},
+        BadInput{"ZeroSpeed", "{one_rail} --speed 0 --aim 0", "--speed"},
+        BadInput{"WordForSpeed", "{one_rail} --speed fast --aim 0", "--speed"},
+        BadInput{"MissingSpeed", "{one_rail} --aim 0", "--speed"},
+        BadInput{"MissingAim", "{one_rail} --speed 1", "--aim"},
+        BadInput{"InfiniteAim", "{one_rail} --speed 1 --aim inf", "--aim"},
+        BadInput{"NanTopspin", "{one_rail} --speed 1 --aim 0 --topspin-k nan", "--topspin-k"},
+        BadInput{"NanSidespin", "{one_rail} --speed 1 --aim 0 --sidespin-k nan", "--sidespin-k"},
+        BadInput{"UnknownMethod", "{one_rail} --speed 1 --aim 0 --method magic", "--method"},
+        BadInput{"ZeroAccuracy", "{one_rail} --speed 1 --aim 0 --accuracy 0", "--accuracy"},
+        BadInput{"LooseAccuracy", "{one_rail} --speed 1 --aim 0 --accuracy 0.5", "--accuracy"},
+        BadInput{"ZeroMaxEvents", "{one_rail} --speed 1 --aim 0 --max-events 0", "--max-events"},
+        BadInput{"ThreadsWithoutBatch", "{one_rail} --speed 1 --aim 0 --threads 2", "--threads"},
+        BadInput{"BatchWithShotFlags", "{one_rail} --batch x.csv --speed 1", "--batch"},
+        BadInput{"MissingBatchFile", "{one_rail} --batch /nonexistent/shots.csv", "--batch"},
+        BadInput{"UnwritableSvg", "{one_rail} --speed 1 --aim 0 --svg /nonexistent/dir/x.svg",
+                 "--svg"},
+        BadInput{"UnknownFlag", "{one_rail} --speed 1 --aim 0 --angle 3", "--angle"}),
+    [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
+
+TEST(SimulateBadInputMessage, SpeedMessageIsTheDocumentedOne) {
+  const ProcessResult run =
+      cueplan("simulate '" + problem_path("one_rail_position") + "' --speed -1 --aim 0");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.err, "cueplan simulate: --speed must be positive and finite (m/s), got -1\n");
+}
+
+// ---------------------------------------------------------------------------
+// help
+
+TEST(SimulateHelp, StatesEveryFlagWithUnitsAndDefaults) {
+  const ProcessResult run = cueplan("simulate --help");
+  EXPECT_EQ(run.exit_code, 0);
+  for (const char* needle : {"PROBLEM",
+                             "--speed",
+                             "--aim",
+                             "--topspin-k",
+                             "--sidespin-k",
+                             "--method",
+                             "--accuracy",
+                             "--table-cache",
+                             "--max-events",
+                             "--json",
+                             "--svg",
+                             "--batch",
+                             "--threads",
+                             "m/s",
+                             "deg",
+                             "exact",
+                             "paper",
+                             "table",
+                             "1e-09",
+                             "200",
+                             "centre-ball",
+                             "speed,aim_deg,topspin_k,sidespin_k",
+                             "final_x,final_y"})
+    EXPECT_NE(run.out.find(needle), std::string::npos) << "missing " << needle;
+
+  const ProcessResult top = cueplan("--help");
+  EXPECT_NE(top.out.find("simulate"), std::string::npos);
+}
+
+}  // namespace
