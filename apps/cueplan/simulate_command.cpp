@@ -37,18 +37,8 @@ std::string point(phys::Vec2 p) { return "(" + number(p.x) + ", " + number(p.y) 
 
 // The impact method simulate() will use for these options: its own rule (shot.hpp,
 // SimulationOptions), so the report names what answered rather than what was asked.
-phys::ImpactMethod method_in_use(const phys::SimulationOptions& options,
-                                 const phys::CushionParams& params) {
-  if (options.impact_method == phys::ImpactMethod::paper) return phys::ImpactMethod::paper;
-  if (options.impact_method == phys::ImpactMethod::table && options.table != nullptr &&
-      options.table->covers(params) &&
-      options.table->measured_error().max_state_relative <= options.impact_accuracy)
-    return phys::ImpactMethod::table;
-  return phys::ImpactMethod::exact;
-}
-
-std::string method_text(const phys::SimulationOptions& options, const phys::CushionParams& params) {
-  switch (method_in_use(options, params)) {
+std::string method_text(const phys::SimulationOptions& options, const phys::Scene& scene) {
+  switch (phys::chosen_impact_method(scene, options)) {
     case phys::ImpactMethod::paper:
       return "paper (the paper's fixed-step scheme, 5000 impulse steps per cushion impact)";
     case phys::ImpactMethod::table: {
@@ -203,7 +193,7 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
            cushions_allowed(problem.limits) + ")");
   line("limits", target.limits.empty() ? "the shot lies within the problem's limits"
                                        : "outside the problem's limits: " + target.limits);
-  line("method", method_text(options, scene.ball_and_cushion));
+  line("method", method_text(options, scene));
   if (r.cushion_hits > 0)
     line("cushion speed", "max normal speed " + number(r.max_cushion_normal_speed, "m/s") +
                               " (rigid-cushion limit " +
@@ -289,7 +279,7 @@ void write_json(std::ostream& out, const prob::Problem& problem, const phys::Sho
   j["limits_message"] = target.limits;
   j["max_cushion_normal_speed"] = r.max_cushion_normal_speed;
   j["rigid_limit_exceeded"] = r.rigid_limit_exceeded;
-  j["method"] = phys::to_string(method_in_use(options, scene.ball_and_cushion));
+  j["method"] = phys::to_string(phys::chosen_impact_method(scene, options));
   j["method_requested"] = phys::to_string(options.impact_method);
   j["impact_accuracy"] = options.impact_accuracy;
   j["max_events"] = options.max_events;
@@ -362,7 +352,7 @@ TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
                 "Table %.4g \u00d7 %.4g m between the cushion noses, ball R = %.4g mm, "
                 "cushion impacts: %s.",
                 problem.scene.length, problem.scene.width, 1000.0 * b.radius,
-                phys::to_string(method_in_use(options, b)));
+                phys::to_string(phys::chosen_impact_method(problem.scene, options)));
   d.caption.push_back(buf);
   return d;
 }
@@ -529,7 +519,7 @@ int SimulateCommand::prepare_table(const prob::Problem& problem, phys::ImpactTab
   // Asked for the table without an accuracy: the table's own measured error is it.
   const double measured = table->measured_error().max_state_relative;
   if (!given("--accuracy")) options->impact_accuracy = std::max(options->impact_accuracy, measured);
-  if (method_in_use(*options, params) != phys::ImpactMethod::table)
+  if (phys::chosen_impact_method(problem.scene, *options) != phys::ImpactMethod::table)
     err << kCommandName << ": the table's measured error " << number(measured)
         << " is above --accuracy " << number(options->impact_accuracy)
         << "; cushion impacts use the exact method\n";

@@ -277,6 +277,15 @@ const char* to_string(ShotStatus status) {
   return "unknown";
 }
 
+ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options) {
+  if (options.impact_method == ImpactMethod::paper) return ImpactMethod::paper;
+  if (options.impact_method == ImpactMethod::table && options.table != nullptr &&
+      options.table->covers(scene.ball_and_cushion) &&
+      options.table->measured_error().max_state_relative <= options.impact_accuracy)
+    return ImpactMethod::table;
+  return ImpactMethod::exact;
+}
+
 ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
                     const SimulationOptions& options) {
   ShotResult result;
@@ -313,14 +322,9 @@ ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
   // stays below about 100 tolerances, bench/README.md).
   ImpactOptions impact;
   impact.tolerance = std::clamp(options.impact_accuracy / 100.0, 1e-14, 1e-3);
-  if (options.impact_method == ImpactMethod::paper) {
-    impact.method = ImpactMethod::paper;
-  } else if (options.impact_method == ImpactMethod::table && options.table != nullptr &&
-             options.table->covers(params) &&
-             options.table->measured_error().max_state_relative <= options.impact_accuracy) {
-    impact.method = ImpactMethod::table;
-    impact.table = options.table;
-  }
+  impact.method = chosen_impact_method(scene, options);
+  if (impact.method == ImpactMethod::table) impact.table = options.table;
+  result.impact_method = impact.method;
 
   // Cue strike: speed along the aim, topspin about the horizontal axis perpendicular
   // to the motion (natural-roll sense), sidespin about z.
@@ -468,6 +472,7 @@ ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
         result.max_cushion_normal_speed = std::max(result.max_cushion_normal_speed,
                                                    in.velocity.y);
         if (r.status == ImpactStatus::rigid_limit_exceeded) result.rigid_limit_exceeded = true;
+        if (r.method_used == ImpactMethod::table) ++result.table_impacts;
         log(next, which, -1, in.velocity.y);
         check_cushions = cushions_in_reach();
         break;

@@ -216,3 +216,23 @@ TEST(ShotSimulator, EventCapEndsWithAClearStatus) {
 
 }  // namespace
 }  // namespace cueplan::physics
+
+namespace cueplan::physics {
+namespace {
+
+TEST(ShotSimulator, ChosenImpactMethodIsReportedAndFollowsTheOptions) {
+  const Scene s = open_table();
+  SimulationOptions o;
+  EXPECT_EQ(chosen_impact_method(s, o), ImpactMethod::exact);
+  o.impact_method = ImpactMethod::paper;
+  EXPECT_EQ(chosen_impact_method(s, o), ImpactMethod::paper);
+  const ShotResult r = simulate(s, {0.5, 0.5}, {2.0, 20.0, 1.0, 0.0}, o);
+  EXPECT_EQ(r.impact_method, ImpactMethod::paper);
+  EXPECT_EQ(r.table_impacts, 0);
+  // Asking for the table without one falls back to exact rather than failing.
+  o.impact_method = ImpactMethod::table;
+  EXPECT_EQ(chosen_impact_method(s, o), ImpactMethod::exact);
+}
+
+}  // namespace
+}  // namespace cueplan::physics

@@ -122,6 +122,11 @@ struct SimulationOptions {
   bool record_path = true;              // fill ShotResult::path
 };
 
+// The impact method simulate() uses for cushion contacts with these options: the
+// table where its measured error meets options.impact_accuracy, paper when asked for,
+// else exact (at a tolerance that meets the accuracy).
+ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options);
+
 struct ShotResult {
   ShotStatus status = ShotStatus::invalid_input;
   std::string message;
@@ -132,6 +137,8 @@ struct ShotResult {
   bool hit_obstacle = false;
   double max_cushion_normal_speed = 0.0;  // m/s; above the rigid limit the model is flagged
   bool rigid_limit_exceeded = false;
+  ImpactMethod impact_method = ImpactMethod::exact;  // chosen_impact_method()
+  int table_impacts = 0;  // cushion contacts the table answered (the rest fell back)
   std::vector<ShotEvent> events;
   std::vector<PathSegment> path;  // when record_path
 };
