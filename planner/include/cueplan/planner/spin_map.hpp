@@ -1,0 +1,51 @@
+// "What spin lands here?": for one speed and aim, where every spin within the miscue
+// limit sends the cue ball, and which of those spins stop in the target zone.
+//
+// The spins form a square grid over the tip-offset disc (k_T, k_S with
+// sqrt(k_T^2 + k_S^2) <= spin_max); each is simulated on the problem's scene.
+// A pure function of its arguments, deterministic for any number of threads.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/shot.hpp"
+#include "cueplan/problems/problem.hpp"
+
+namespace cueplan::planner {
+
+struct SpinMapOptions {
+  int grid = 41;                 // points across the disc's diameter (odd keeps the centre)
+  double spin_max = 0.0;         // disc radius in k; 0: the problem's limits.spin
+  int threads = 1;
+  physics::SimulationOptions simulation;
+  // Called now and then with the fraction done (0..1), from the calling thread.
+  std::function<void(double)> progress;
+  std::string validate() const;
+};
+
+struct SpinMapPoint {
+  double topspin_k = 0.0, sidespin_k = 0.0;
+  double tip_right = 0.0, tip_up = 0.0;   // tip offset / R (d = k R / 2.5)
+  physics::ShotStatus outcome = physics::ShotStatus::rest;
+  physics::Vec2 final_position;            // m
+  double miss_distance = 0.0;              // m; infinite unless at rest
+  int cushion_hits = 0;
+  bool lands = false;                      // at rest within tolerance, allowed cushions
+};
+
+struct SpinMap {
+  double speed = 0.0;    // m/s
+  double aim_deg = 0.0;  // deg
+  double spin_max = 0.0;
+  int grid = 0;
+  std::vector<SpinMapPoint> points;  // the grid points inside the disc, row by row
+  int landing = 0;                   // how many land
+  std::string message;               // set when the inputs were invalid (points empty)
+};
+
+SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
+                 const SpinMapOptions& options);
+
+}  // namespace cueplan::planner
