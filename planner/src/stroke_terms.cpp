@@ -1,0 +1,128 @@
+// Names of the planner's methods and statuses, the noise model's checks, and the
+// stroke in a player's terms.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "cueplan/planner/planner.hpp"
+
+namespace cueplan::planner {
+namespace {
+
+std::string describe(const char* field, const char* rule, double value) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field, rule, value);
+  return buf;
+}
+
+// A "tip" of offset is a quarter of the ball's radius, so the miscue limit (half the
+// radius, PHYSICS.md) is two tips. Amounts are rounded to the nearest quarter tip.
+std::string tips(double offset_over_radius) {
+  const double quarters = std::round(std::abs(offset_over_radius) * 4.0 * 4.0);
+  const int whole = static_cast<int>(quarters) / 4;
+  const int part = static_cast<int>(quarters) % 4;
+  static constexpr const char* kParts[] = {"", "a quarter", "half", "three quarters"};
+  std::string words;
+  if (whole == 0) {
+    words = std::string(kParts[part]) + " of a tip";
+    if (part == 2) words = "half a tip";
+  } else {
+    words = whole == 1 ? "one" : std::to_string(whole);
+    if (part == 2)
+      words += " and a half";
+    else if (part != 0)
+      words += std::string(" and ") + kParts[part];
+    words += whole == 1 && part == 0 ? " tip" : " tips";
+  }
+  return words;
+}
+
+}  // namespace
+
+const char* to_string(GlobalMethod method) {
+  switch (method) {
+    case GlobalMethod::direct_l: return "direct_l";
+    case GlobalMethod::crs2: return "crs2";
+    case GlobalMethod::mlsl: return "mlsl";
+    case GlobalMethod::isres: return "isres";
+  }
+  return "unknown";
+}
+
+const char* to_string(LocalMethod method) {
+  switch (method) {
+    case LocalMethod::bobyqa: return "bobyqa";
+    case LocalMethod::sbplx: return "sbplx";
+    case LocalMethod::cobyla: return "cobyla";
+    case LocalMethod::neldermead: return "neldermead";
+  }
+  return "unknown";
+}
+
+const char* to_string(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::solved: return "solved";
+    case PlanStatus::unreachable: return "unreachable";
+    case PlanStatus::budget_exhausted: return "budget_exhausted";
+    case PlanStatus::invalid_input: return "invalid_input";
+  }
+  return "unknown";
+}
+
+bool parse_global_method(const std::string& name, GlobalMethod* method) {
+  for (GlobalMethod m : {GlobalMethod::direct_l, GlobalMethod::crs2, GlobalMethod::mlsl,
+                         GlobalMethod::isres}) {
+    if (name == to_string(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool parse_local_method(const std::string& name, LocalMethod* method) {
+  for (LocalMethod m : {LocalMethod::bobyqa, LocalMethod::sbplx, LocalMethod::cobyla,
+                        LocalMethod::neldermead}) {
+    if (name == to_string(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string NoiseModel::validate() const {
+  if (!std::isfinite(aim_deg) || aim_deg < 0.0)
+    return describe("noise.aim_deg", "must be finite and not negative (deg)", aim_deg);
+  if (!std::isfinite(speed) || speed < 0.0)
+    return describe("noise.speed", "must be finite and not negative (m/s)", speed);
+  if (!std::isfinite(tip_offset) || tip_offset < 0.0)
+    return describe("noise.tip_offset", "must be finite and not negative (m)", tip_offset);
+  if (!std::isfinite(scale) || scale < 0.0)
+    return describe("noise.scale", "must be finite and not negative", scale);
+  return {};
+}
+
+TipOffset tip_offset(const physics::Shot& shot) {
+  // k = (5/2) d / R for a centred-impulse cue (PHYSICS.md, "Cue strike").
+  return {shot.sidespin_k / 2.5, shot.topspin_k / 2.5};
+}
+
+std::string describe_stroke(const physics::Shot& shot) {
+  const TipOffset t = tip_offset(shot);
+  const double eighth = 1.0 / 32.0;  // below half a quarter tip reads as centre
+  std::string side, height;
+  if (std::abs(t.right) < eighth)
+    side = "no side";
+  else
+    side = tips(t.right) + (t.right > 0 ? " of right" : " of left");
+  if (std::abs(t.up) < eighth)
+    height = "centre ball";
+  else
+    height = tips(t.up) + (t.up > 0 ? " above centre" : " below centre");
+  char speed[64];
+  std::snprintf(speed, sizeof speed, "%.2f m/s", shot.speed);
+  return side + ", " + height + ", at " + speed;
+}
+
+}  // namespace cueplan::planner
