@@ -436,8 +436,10 @@ void ExactIntegrator::run() {
 
     // Next adaptive step: as the extrapolation suggests, but after a step cut short
     // by an event no shorter than the size that was planned.
-    h = (target == Target::none) ? std::min(report.next_h, 10.0 * std::abs(step))
-                                 : std::max(h, std::min(report.next_h, 10.0 * std::abs(step)));
+    // (A stick that broke at once leaves the point unmoved: keep the planned size.)
+    if (step != 0.0)
+      h = (target == Target::none) ? std::min(report.next_h, 10.0 * std::abs(step))
+                                   : std::max(h, std::min(report.next_h, 10.0 * std::abs(step)));
 
     if (broke) {
       // The contact nearest its cone's edge is the one whose stick breaks.

@@ -304,6 +304,23 @@ TEST(CushionImpact, DefaultToleranceWithinOneInABillionOfConvergedRun) {
   RecordProperty("worst_difference", std::to_string(worst));
 }
 
+TEST(CushionImpact, HeadOnWithSidespinResolvesAndMirrors) {
+  // Exactly head-on, the table slip vanishes at the end of compression while the
+  // cushion sticks, and the stick breaks at that very point: the integrator must go
+  // on from there. Mirror symmetry about the normal: k_S -> -k_S gives beta -> 180 - beta.
+  CushionParams p;
+  for (double v0 : {1.0, 4.0})
+    for (double kt : {-1.0, -0.5, -0.3, 0.0, 0.5})
+      for (double ks : {0.05, 0.1, 0.5}) {
+        const ImpactResult a = solve(p, v0, 90.0, kt, ks);
+        const ImpactResult b = solve(p, v0, 90.0, kt, -ks);
+        ASSERT_TRUE(usable(a.status)) << a.message << " k_T " << kt << " k_S " << ks;
+        ASSERT_TRUE(usable(b.status)) << b.message;
+        EXPECT_NEAR(b.rebound_angle_deg, 180.0 - a.rebound_angle_deg, 1e-7);
+        EXPECT_NEAR(b.rebound_speed, a.rebound_speed, 1e-9 * v0);
+      }
+}
+
 TEST(CushionImpact, MirrorSymmetryOfSidespin) {
   CushionParams p;
   for (double alpha : {10.0, 37.0, 60.0, 89.0}) {
