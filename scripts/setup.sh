@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev
-  libeigen3-dev libnlopt-cxx-dev libyaml-cpp-dev
+  libeigen3-dev libnlopt-cxx-dev libyaml-cpp-dev zlib1g-dev
 )
 
 missing=()
