@@ -8,6 +8,8 @@
 #include "figures_command.hpp"
 #include "rebound_command.hpp"
 #include "simulate_command.hpp"
+#include "solve_command.hpp"
+#include "spinmap_command.hpp"
 
 namespace {
 
@@ -40,6 +42,8 @@ int main(int argc, char** argv) {
   ReboundCommand rebound(app);
   SimulateCommand simulate(app);
   FiguresCommand figures(app);
+  SolveCommand solve(app);
+  SpinmapCommand spinmap(app);
 
   try {
     app.parse(argc, argv);
@@ -49,7 +53,7 @@ int main(int argc, char** argv) {
     // CLI11 reports an unknown command as a missing one; name it instead.
     if (app.get_subcommands().empty() && argc > 1 && argv[1][0] != '-') {
       std::cerr << "cueplan: unknown command '" << argv[1]
-                << "'; the commands are rebound, simulate and figures\n";
+                << "'; the commands are rebound, simulate, solve, spinmap and figures\n";
       return kExitUsage;
     }
     std::cerr << parse_error_line(app, error) << '\n';
@@ -59,5 +63,7 @@ int main(int argc, char** argv) {
   if (rebound.selected()) return rebound.run(std::cout, std::cerr);
   if (simulate.selected()) return simulate.run(std::cout, std::cerr);
   if (figures.selected()) return figures.run(std::cout, std::cerr);
+  if (solve.selected()) return solve.run(std::cout, std::cerr);
+  if (spinmap.selected()) return spinmap.run(std::cout, std::cerr);
   return kExitUsage;  // unreachable: a subcommand is required
 }

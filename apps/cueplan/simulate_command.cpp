@@ -1,19 +1,17 @@
 #include "simulate_command.hpp"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <ostream>
 
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "exit_codes.hpp"
+#include "impact_setup.hpp"
 #include "output_file.hpp"
-#include "rebound_inputs.hpp"
+#include "shot_words.hpp"
 #include "simulate_batch.hpp"
 #include "table_drawing.hpp"
 
@@ -34,44 +32,6 @@ std::string number(double value, const char* unit = nullptr) {
 }
 
 std::string point(phys::Vec2 p) { return "(" + number(p.x) + ", " + number(p.y) + ") m"; }
-
-// The impact method simulate() will use for these options: its own rule (shot.hpp,
-// SimulationOptions), so the report names what answered rather than what was asked.
-std::string method_text(const phys::SimulationOptions& options, const phys::Scene& scene) {
-  switch (phys::chosen_impact_method(scene, options)) {
-    case phys::ImpactMethod::paper:
-      return "paper (the paper's fixed-step scheme, 5000 impulse steps per cushion impact)";
-    case phys::ImpactMethod::table: {
-      char buf[256];
-      std::snprintf(
-          buf, sizeof buf,
-          "table (measured error %.3g of the speed, within the impact accuracy %.3g; the exact "
-          "method in the %.3g %% of cells where interpolation is inaccurate)",
-          options.table->measured_error().max_state_relative, options.impact_accuracy,
-          100.0 * options.table->fallback_fraction());
-      return buf;
-    }
-    case phys::ImpactMethod::exact:
-      break;
-  }
-  return "exact (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
-}
-
-// The four cushions by their nose lines (ShotEvent::cushion numbers them).
-std::string cushion_name(const phys::Scene& scene, int cushion) {
-  switch (cushion) {
-    case 0:
-      return "y = 0";
-    case 1:
-      return "x = " + number(scene.length);
-    case 2:
-      return "y = " + number(scene.width);
-    case 3:
-      return "x = 0";
-    default:
-      return "?";
-  }
-}
 
 double speed_of(const phys::ShotEvent& e) { return std::hypot(e.velocity.x, e.velocity.y); }
 
@@ -491,39 +451,8 @@ std::string SimulateCommand::read_shot(phys::Shot* shot) const {
 
 int SimulateCommand::prepare_table(const prob::Problem& problem, phys::ImpactTable* table,
                                    phys::SimulationOptions* options, std::ostream& err) const {
-  const phys::CushionParams& params = problem.scene.ball_and_cushion;
-  const std::string cache_dir =
-      args_.table_cache.empty() ? phys::default_table_cache_dir() : args_.table_cache;
-  if (std::string why = ensure_directory(cache_dir); !why.empty()) {
-    err << kCommandName << ": --table-cache: " << why << '\n';
-    return kExitUsage;
-  }
-  // A first build takes a while: say so before it starts, not only after.
-  const std::filesystem::path file =
-      std::filesystem::path(cache_dir) / phys::ImpactTable::cache_file_name(params, {});
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec))
-    err << kCommandName << ": building the impact table for this cushion (once; about 30 s on "
-        << "2 cores), to be cached in " << cache_dir << '\n';
-  std::string note;
-  std::string error;
-  std::optional<phys::ImpactTable> acquired =
-      acquire_table(params, cache_dir, args_.threads, &note, &error);
-  if (!acquired) {
-    err << kCommandName << ": " << error << '\n';
-    return kExitFailed;
-  }
-  if (!note.empty()) err << kCommandName << ": " << note << '\n';
-  *table = std::move(*acquired);
-  options->table = table;
-  // Asked for the table without an accuracy: the table's own measured error is it.
-  const double measured = table->measured_error().max_state_relative;
-  if (!given("--accuracy")) options->impact_accuracy = std::max(options->impact_accuracy, measured);
-  if (phys::chosen_impact_method(problem.scene, *options) != phys::ImpactMethod::table)
-    err << kCommandName << ": the table's measured error " << number(measured)
-        << " is above --accuracy " << number(options->impact_accuracy)
-        << "; cushion impacts use the exact method\n";
-  return kExitOk;
+  return prepare_impact_table(kCommandName, problem.scene, args_.table_cache, args_.threads,
+                              given("--accuracy"), table, options, err);
 }
 
 int SimulateCommand::run(std::ostream& out, std::ostream& err) const {

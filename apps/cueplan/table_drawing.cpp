@@ -422,6 +422,17 @@ std::string render_table_svg(const TableDrawing& drawing, const TableStyle& styl
     }
   }
 
+  // Dots, e.g. rest positions of many shots, over the paths.
+  if (!drawing.dots.empty()) {
+    body += "<g class=\"dots\">\n";
+    for (const TableDot& dot : drawing.dots) {
+      std::string attributes = "class=\"dot\" fill=\"" + dot.colour + "\"";
+      if (!dot.outline.empty()) attributes += " stroke=\"" + dot.outline + "\" stroke-width=\"1\"";
+      body += circle(f.x(dot.position.x), f.y(dot.position.y), dot.radius, attributes);
+    }
+    body += "</g>\n";
+  }
+
   // The cue ball where it starts, under the markers of where the path goes.
   if (drawing.cue_ball)
     body += circle(f.x(drawing.cue_ball->x), f.y(drawing.cue_ball->y), r,
@@ -465,6 +476,14 @@ std::string render_table_svg(const TableDrawing& drawing, const TableStyle& styl
   const std::string ink = kInk;
   if (shown.sliding) entries.push_back({stroke_symbol(kSlidingColour), "sliding"});
   if (shown.rolling) entries.push_back({stroke_symbol(kRollingColour), "rolling"});
+  const bool any_faint = std::any_of(drawing.paths.begin(), drawing.paths.end(),
+                                     [](const DrawnPath& p) { return p.faint; });
+  if (any_faint && !drawing.faint_legend.empty())
+    entries.push_back({line(0.0, 0.0, 26.0, 0.0,
+                            std::string("stroke=\"") + kFaint + "\" stroke-width=\"" +
+                                num(0.5 * style.line_width + 0.5) +
+                                "\" stroke-opacity=\"0.6\" stroke-linecap=\"round\""),
+                       drawing.faint_legend});
   if (drawing.cue_ball)
     entries.push_back(
         {circle(13.0, 0.0, lr, "fill=\"#ffffff\" stroke=\"" + ink + "\" stroke-width=\"1.3\""),

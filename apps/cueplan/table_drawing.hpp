@@ -29,6 +29,14 @@ struct DrawnPath {
   bool faint = false;
 };
 
+// A small marker on the cloth, e.g. where one spin of a spin map comes to rest.
+struct TableDot {
+  physics::Vec2 position;  // m, table frame
+  std::string colour;      // fill, e.g. "#440154"
+  double radius = 3.0;     // px
+  std::string outline;     // stroke colour; empty: none
+};
+
 struct TableDrawing {
   std::string title;                 // bold line at the top; may use k_{T} subscripts
   std::vector<std::string> caption;  // lines under the title
@@ -36,6 +44,8 @@ struct TableDrawing {
   std::optional<physics::Vec2> cue_ball;  // the ball's start, drawn as a white ball
   std::optional<TargetZone> target;
   std::vector<DrawnPath> paths;  // drawn in order, the last on top
+  std::vector<TableDot> dots;    // over the paths, under the balls; the caller explains them
+  std::string faint_legend;      // legend text for the faint paths; empty: no entry
 };
 
 // Sizes in SVG user units (pixels at 100 %), except where metres are said.

@@ -31,7 +31,10 @@ const char* to_string(LocalMethod method);
 bool parse_global_method(const std::string& name, GlobalMethod* method);
 bool parse_local_method(const std::string& name, LocalMethod* method);
 
-// A player's execution error: independent Gaussian errors on each stroke.
+// A player's execution error: independent Gaussian errors on each stroke. A noisy
+// tip offset beyond the miscue limit (sqrt(k_T^2 + k_S^2) above the larger of 1.25,
+// i.e. d > R/2, and the problem's spin limit) is a miscue and counts as a failure,
+// as does a noisy speed that is not positive; spin is never clamped.
 struct NoiseModel {
   double aim_deg = 0.125;      // standard deviation of the aim (deg)
   double speed = 0.075;        // standard deviation of the speed (m/s)
@@ -40,20 +43,37 @@ struct NoiseModel {
   std::string validate() const;
 };
 
+// The answer depends on the options and the seed only, not on `threads`, as long as
+// the evaluation budget (not max_time_s) is what ends each stage.
+//
+// The default pairing and budget are measured (bench/README.md, "Planner"): CRS2 with
+// BOBYQA solved the most problems at a tight budget and had the shortest median plan
+// time of the pairings that solved all of them at 2000 evaluations.
 struct PlannerOptions {
   GlobalMethod global = GlobalMethod::crs2;
-  LocalMethod local = LocalMethod::sbplx;
-  int max_evaluations = 4000;  // shot simulations for the search, global and local together
-  double max_time_s = 10.0;    // wall-clock budget for the search (s)
-  int local_starts = 6;        // distinct global candidates polished locally
+  LocalMethod local = LocalMethod::bobyqa;
+  int max_evaluations = 2000;  // shot simulations for the search, global and local together
+  // Wall-clock budget (s) for the search and the robust polish; the exact
+  // verification and the success probabilities of the returned shots come after it.
+  double max_time_s = 10.0;
+  int local_starts = 6;        // distinct global candidates (best of their families) polished locally
+  double global_share = 0.5;   // fraction of max_evaluations the global stage may use, (0, 1)
   uint64_t seed = 1;           // every random choice derives from it
   int threads = 1;             // local polishes run in parallel; the result does not change
   bool enforce_rigid_limit = false;  // reject shots whose cushion normal speed exceeds it
   bool robust = false;         // maximise the success probability, not the nominal miss
   NoiseModel noise;
-  int robustness_samples = 200;      // Monte Carlo strokes per success probability
+  int robustness_samples = 200;      // Monte Carlo strokes per success probability (same
+                                     // seed for every shot); 0: not estimated
+  int robust_search_samples = 32;    // robust mode: common noise draws per objective call
+  int robust_max_evaluations = 20000;  // robust mode: shot simulations for the robust polish
   int max_alternatives = 5;          // distinct solutions returned besides the best
   physics::SimulationOptions simulation;  // impact method (and table), accuracy, events
+  // When `simulation` searches with the impact table, re-simulate the returned shots
+  // with the exact method (accuracy 1e-9) and report those outcomes; a shot the exact
+  // method moves out of the tolerance is polished again with it. Success
+  // probabilities and the robust polish use `simulation` as it is (fast with a table).
+  bool verify_exact = true;
 
   // Empty when usable; otherwise one line naming the field.
   std::string validate() const;
@@ -61,7 +81,7 @@ struct PlannerOptions {
 
 enum class PlanStatus {
   solved,            // the best shot stops within the tolerance and meets every constraint
-  unreachable,       // the search converged everywhere it looked without reaching the target
+  unreachable,       // every local polish converged (or stopped improving) short of the target
   budget_exhausted,  // evaluations or time ran out before a solution was found
   invalid_input,     // nothing searched; message names the field
 };
@@ -79,7 +99,10 @@ struct PlannedShot {
   bool rigid_limit_exceeded = false;
   double max_cushion_normal_speed = 0.0;  // m/s
   double success_probability = 0.0;  // of stopping within the tolerance under the noise
-  std::string family;                // route and spin in words, e.g. "2 cushions (y = 0, x = L), follow, right"
+  std::string family;                // route and spin in words, e.g. "2 cushions (y = 0, x = L), follow, right spin"
+  bool solves = false;               // within the tolerance and breaks no constraint
+  std::string violations;            // constraints broken, in words; empty when none
+  physics::ImpactMethod impact_method = physics::ImpactMethod::exact;  // that gave this outcome
 };
 
 struct PlanResult {
@@ -89,6 +112,8 @@ struct PlanResult {
   std::vector<PlannedShot> alternatives;  // distinct families, best first
   int evaluations = 0;               // shot simulations made (search and robustness)
   double time_s = 0.0;               // wall clock
+  int local_searches = 0;            // local polishes run
+  int converged_searches = 0;        // of those, ended by their tolerances or stalled (not cut by a budget)
 };
 
 PlanResult plan(const problems::Problem& problem, const PlannerOptions& options);
@@ -104,6 +129,18 @@ double success_probability(const problems::Problem& problem, const physics::Shot
 // (success_probability left at 0).
 PlannedShot evaluate(const problems::Problem& problem, const physics::Shot& shot,
                      const physics::SimulationOptions& simulation);
+
+// Problems whose answer is known, for tests and benchmarks: on a snooker table (with
+// its pockets, no obstacles) a random cue-ball position and a random stroke within the
+// default limits (speed 0.3-3 m/s, any aim, spin within 1.25) that comes to rest after
+// 0-3 cushions; the target is where it stops (tolerance 0.02 m) and the cushion limits
+// are exactly its count. Deterministic for a seed.
+struct KnownShotProblem {
+  problems::Problem problem;
+  physics::Shot shot;  // a stroke that lands on the target
+};
+std::vector<KnownShotProblem> known_shot_problems(int count, uint64_t seed,
+                                                  const physics::SimulationOptions& simulation);
 
 // The stroke in a player's terms: tip offsets as fractions of the ball radius
 // (d = k R / 2.5) and words such as "half a tip of right, a quarter tip below centre".

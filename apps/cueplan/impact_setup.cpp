@@ -1,0 +1,100 @@
+#include "impact_setup.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+#include "exit_codes.hpp"
+#include "output_file.hpp"
+#include "rebound_inputs.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+
+std::string number(double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  return buf;
+}
+
+}  // namespace
+
+void add_impact_flags(CLI::App& command, ImpactArgs* args, const char* group) {
+  command
+      .add_option("--method", args->method,
+                  "Cushion impacts: table (precomputed surrogate, the fast path for the "
+                  "thousands of shots a search needs; built once, about 30 s on 2 cores, then "
+                  "loaded from the cache), exact (adaptive integrator with stick/slip events) or "
+                  "paper (the paper's fixed-step scheme)")
+      ->type_name("table|exact|paper")
+      ->capture_default_str()
+      ->group(group);
+  command
+      .add_option("--accuracy", args->accuracy,
+                  "Relative error wanted from each cushion impact, in [1e-12, 0.1]. table: the "
+                  "table answers only where its measured error is within it (else exact does); "
+                  "without this flag it is the table's measured error. exact: its tolerance "
+                  "follows it. Default 1e-09 (exact)")
+      ->type_name("REL")
+      ->group(group);
+  command
+      .add_option("--table-cache", args->table_cache,
+                  "table: directory for the cached table (default: $CUEPLAN_CACHE_DIR, else "
+                  "$XDG_CACHE_HOME/cueplan, else ~/.cache/cueplan)")
+      ->type_name("DIR")
+      ->group(group);
+}
+
+std::string read_impact_options(const ImpactArgs& args, phys::SimulationOptions* options) {
+  if (!phys::parse_method(args.method, &options->impact_method))
+    return "--method must be one of table, exact, paper, got '" + args.method + "'";
+  if (!std::isfinite(args.accuracy) || !(args.accuracy >= 1e-12) || !(args.accuracy <= 0.1))
+    return "--accuracy must lie in [1e-12, 0.1], got " + number(args.accuracy);
+  options->impact_accuracy = args.accuracy;
+  return {};
+}
+
+int prepare_impact_table(const char* command, const phys::Scene& scene,
+                         const std::string& table_cache, int threads, bool accuracy_given,
+                         phys::ImpactTable* table, phys::SimulationOptions* options,
+                         std::ostream& err) {
+  const phys::CushionParams& params = scene.ball_and_cushion;
+  const std::string cache_dir = table_cache.empty() ? phys::default_table_cache_dir() : table_cache;
+  if (std::string why = ensure_directory(cache_dir); !why.empty()) {
+    err << command << ": --table-cache: " << why << '\n';
+    return kExitUsage;
+  }
+  // A first build takes a while: say so before it starts, not only after.
+  const std::filesystem::path file =
+      std::filesystem::path(cache_dir) / phys::ImpactTable::cache_file_name(params, {});
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    err << command << ": building the impact table for this cushion (once; about 30 s on "
+        << "2 cores), to be cached in " << cache_dir << '\n';
+  std::string note;
+  std::string error;
+  std::optional<phys::ImpactTable> acquired =
+      acquire_table(params, cache_dir, threads, &note, &error);
+  if (!acquired) {
+    err << command << ": " << error << '\n';
+    return kExitFailed;
+  }
+  if (!note.empty()) err << command << ": " << note << '\n';
+  *table = std::move(*acquired);
+  options->table = table;
+  // Asked for the table without an accuracy: the table's own measured error is it.
+  const double measured = table->measured_error().max_state_relative;
+  if (!accuracy_given) options->impact_accuracy = std::max(options->impact_accuracy, measured);
+  if (phys::chosen_impact_method(scene, *options) != phys::ImpactMethod::table)
+    err << command << ": the table's measured error " << number(measured) << " is above --accuracy "
+        << number(options->impact_accuracy) << "; cushion impacts use the exact method\n";
+  return kExitOk;
+}
+
+}  // namespace cueplan::cli

@@ -1,0 +1,41 @@
+// The cushion-impact flags of the commands that simulate many shots on a problem's
+// scene (--method, --accuracy, --table-cache) and the impact table they may need.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/physics/shot.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace cueplan::cli {
+
+struct ImpactArgs {
+  std::string method = "table";  // exact, paper or table
+  double accuracy = 1e-9;        // relative error wanted from each cushion impact
+  std::string table_cache;       // empty: physics::default_table_cache_dir()
+};
+
+// Registers --method, --accuracy and --table-cache on `command`, in `group`; the flags
+// write into *args, which must outlive the parse.
+void add_impact_flags(CLI::App& command, ImpactArgs* args, const char* group);
+
+// Empty when the flags are usable (then *options has the method and accuracy);
+// otherwise one line naming the flag.
+std::string read_impact_options(const ImpactArgs& args, physics::SimulationOptions* options);
+
+// With the table method: loads the table for the scene's cushion from the cache
+// directory, or builds and caches it (saying so on `err` before a first build), and
+// points options->table at *table. Unless the accuracy was given, the table's own
+// measured error becomes the accuracy. Notes go to `err`, each line led by `command`.
+// Returns an ExitCode: kExitOk, or the code to stop with (its line already written).
+int prepare_impact_table(const char* command, const physics::Scene& scene,
+                         const std::string& table_cache, int threads, bool accuracy_given,
+                         physics::ImpactTable* table, physics::SimulationOptions* options,
+                         std::ostream& err);
+
+}  // namespace cueplan::cli

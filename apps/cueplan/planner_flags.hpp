@@ -1,0 +1,47 @@
+// The planner's flags, shared by `cueplan solve` and `cueplan spinmap` (which plans
+// the stroke first when no --speed and --aim are given), and their reading into
+// planner::PlannerOptions with one-line messages that name the flag.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "cueplan/planner/planner.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace cueplan::cli {
+
+// What the command line asked of the planner, in the flags' units; the defaults are
+// PlannerOptions' own.
+struct PlannerArgs {
+  std::string global = planner::to_string(planner::PlannerOptions{}.global);
+  std::string local = planner::to_string(planner::PlannerOptions{}.local);
+  int max_evaluations = planner::PlannerOptions{}.max_evaluations;
+  double max_time_s = planner::PlannerOptions{}.max_time_s;
+  int starts = planner::PlannerOptions{}.local_starts;
+  uint64_t seed = planner::PlannerOptions{}.seed;
+  double noise = 1.0;  // multiplies every deviation of the NoiseModel
+  bool robust = false;
+  int samples = planner::PlannerOptions{}.robustness_samples;
+  bool enforce_rigid_limit = false;
+  int alternatives = planner::PlannerOptions{}.max_alternatives;
+};
+
+// Registers the planner's flags on `command`, in `group`; they write into *args, which
+// must outlive the parse.
+void add_planner_flags(CLI::App& command, PlannerArgs* args, const char* group);
+
+// Empty when the flags are usable: then *options holds them, `threads` (0: one per
+// core) and `simulation`. Otherwise one line naming the flag.
+std::string read_planner_options(const PlannerArgs& args, int threads,
+                                 const physics::SimulationOptions& simulation,
+                                 planner::PlannerOptions* options);
+
+// The planner's noise model in words, e.g. "aim 0.125 deg, speed 0.075 m/s, tip 0.5 mm
+// (standard deviations, --noise 1)".
+std::string noise_text(const planner::NoiseModel& noise);
+
+}  // namespace cueplan::cli

@@ -1,0 +1,64 @@
+#include "shot_words.hpp"
+
+#include <cstdio>
+
+#include "cueplan/physics/impact_table.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+
+std::string number(double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  return buf;
+}
+
+}  // namespace
+
+std::string cushion_name(const phys::Scene& scene, int cushion) {
+  switch (cushion) {
+    case 0:
+      return "y = 0";
+    case 1:
+      return "x = " + number(scene.length);
+    case 2:
+      return "y = " + number(scene.width);
+    case 3:
+      return "x = 0";
+    default:
+      return "?";
+  }
+}
+
+std::string route_text(const phys::Scene& scene, const std::vector<int>& route) {
+  if (route.empty()) return "no cushion";
+  std::string text =
+      std::to_string(route.size()) + (route.size() == 1 ? " cushion: " : " cushions: ");
+  for (size_t i = 0; i < route.size(); ++i)
+    text += (i == 0 ? "" : ", ") + cushion_name(scene, route[i]);
+  return text;
+}
+
+std::string method_text(const phys::SimulationOptions& options, const phys::Scene& scene) {
+  switch (phys::chosen_impact_method(scene, options)) {
+    case phys::ImpactMethod::paper:
+      return "paper (the paper's fixed-step scheme, 5000 impulse steps per cushion impact)";
+    case phys::ImpactMethod::table: {
+      char buf[256];
+      std::snprintf(
+          buf, sizeof buf,
+          "table (measured error %.3g of the speed, within the impact accuracy %.3g; the exact "
+          "method in the %.3g %% of cells where interpolation is inaccurate)",
+          options.table->measured_error().max_state_relative, options.impact_accuracy,
+          100.0 * options.table->fallback_fraction());
+      return buf;
+    }
+    case phys::ImpactMethod::exact:
+      break;
+  }
+  return "exact (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
+}
+
+}  // namespace cueplan::cli

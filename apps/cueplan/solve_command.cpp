@@ -1,0 +1,487 @@
+#include "solve_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <vector>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/problems/problem.hpp"
+#include "exit_codes.hpp"
+#include "output_file.hpp"
+#include "shot_words.hpp"
+#include "table_drawing.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+namespace plan = cueplan::planner;
+namespace prob = cueplan::problems;
+using nlohmann::ordered_json;
+
+constexpr const char* kCommandName = "cueplan solve";
+constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue strike")
+
+std::string number(double value, const char* unit = nullptr) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  std::string s = buf;
+  if (unit) s += std::string(" ") + unit;
+  return s;
+}
+
+std::string fixed(const char* pattern, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, pattern, value);
+  return buf;
+}
+
+std::string cushions_allowed(const prob::Limits& limits) {
+  return limits.cushions_min == limits.cushions_max
+             ? std::to_string(limits.cushions_min)
+             : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
+}
+
+// Tip offsets as fractions of R, with their direction in words.
+std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) {
+  const plan::TipOffset t = plan::tip_offset(shot);
+  return fixed("%.3f", std::abs(t.right)) + " R " + (t.right < 0.0 ? "left" : "right") +
+         " of centre, " + fixed("%.3f", std::abs(t.up)) + " R " + (t.up < 0.0 ? "below" : "above") +
+         " centre (fractions of the ball radius; the spin "
+         "limit is " +
+         fixed("%.3g", limits.spin_max / kSpinPerTipOffset) + " R)";
+}
+
+// ---------------------------------------------------------------------------
+// Constraints, each reported on its own.
+
+struct ConstraintRow {
+  const char* name;   // speed, spin, aim, cushions, pocket, obstacle, rigid limit
+  const char* key;    // the same as a JSON key: ..., rigid_limit
+  const char* state;  // "ok", "broken" or "flagged" (rigid limit, not enforced)
+  std::string detail;
+};
+
+// An aim the problem allows, to judge the other limits on their own.
+double allowed_aim(const prob::Limits& limits, double aim_deg) {
+  return limits.aim.mode == prob::AimMode::free ? aim_deg : limits.aim.lo_deg;
+}
+
+std::vector<ConstraintRow> constraints(const prob::Problem& problem, const plan::PlannedShot& p,
+                                       bool enforce_rigid_limit) {
+  const prob::Limits& l = problem.limits;
+  const phys::Shot& s = p.shot;
+  const double aim = allowed_aim(l, s.aim_deg);
+  std::vector<ConstraintRow> rows;
+  const auto row = [&](const char* name, bool ok, std::string detail) {
+    rows.push_back({name, name, ok ? "ok" : "broken", std::move(detail)});
+  };
+
+  const std::string speed = prob::check_shot(l, {s.speed, aim, 0.0, 0.0});
+  row("speed", speed.empty(),
+      speed.empty() ? number(s.speed, "m/s") + " within [" + number(l.speed_min) + ", " +
+                          number(l.speed_max) + "] m/s"
+                    : speed);
+  const std::string spin = prob::check_shot(l, {l.speed_min, aim, s.topspin_k, s.sidespin_k});
+  row("spin", spin.empty(),
+      spin.empty() ? "sqrt(k_T^2 + k_S^2) = " + number(std::hypot(s.topspin_k, s.sidespin_k)) +
+                         " within " + number(l.spin_max)
+                   : spin);
+  const std::string aim_check = prob::check_shot(l, {l.speed_min, s.aim_deg, 0.0, 0.0});
+  std::string aim_detail = aim_check;
+  if (aim_check.empty())
+    aim_detail = l.aim.mode == prob::AimMode::free
+                     ? number(s.aim_deg, "deg") + " (any aim allowed)"
+                     : number(s.aim_deg, "deg") + " within [" + number(l.aim.lo_deg) + ", " +
+                           number(l.aim.hi_deg) + "] deg";
+  row("aim", aim_check.empty(), aim_detail);
+  const bool cushions_ok = p.cushion_hits >= l.cushions_min && p.cushion_hits <= l.cushions_max;
+  row("cushions", cushions_ok,
+      std::to_string(p.cushion_hits) + " (the problem allows " + cushions_allowed(l) + ")");
+  const bool pocketed = p.outcome == phys::ShotStatus::pocketed;
+  row("pocket", !pocketed, pocketed ? "the cue ball is pocketed" : "not pocketed");
+  const bool touched = p.outcome == phys::ShotStatus::hit_obstacle;
+  row("obstacle", !touched,
+      touched                           ? "the cue ball touches an obstacle ball"
+      : problem.scene.obstacles.empty() ? "no obstacle balls on this table"
+                                        : "clears every obstacle ball");
+
+  const double limit = problem.scene.ball_and_cushion.rigid_speed_limit;
+  std::string rigid = "max cushion normal speed " + number(p.max_cushion_normal_speed, "m/s");
+  if (!p.rigid_limit_exceeded) {
+    rows.push_back({"rigid limit", "rigid_limit", "ok", rigid + ", below " + number(limit, "m/s")});
+  } else if (enforce_rigid_limit) {
+    rows.push_back(
+        {"rigid limit", "rigid_limit", "broken",
+         rigid + ", above " + number(limit, "m/s") + " (enforced by --enforce-rigid-limit)"});
+  } else {
+    rows.push_back({"rigid limit", "rigid_limit", "flagged",
+                    rigid + ", above " + number(limit, "m/s") +
+                        ": the rigid-cushion model is not trusted there (--enforce-rigid-limit "
+                        "rejects such strokes)"});
+  }
+  return rows;
+}
+
+std::string landing_text(const prob::Problem& problem, const plan::PlannedShot& p) {
+  switch (p.outcome) {
+    case phys::ShotStatus::rest:
+      return "x = " + number(p.final_position.x, "m") + ", y = " + number(p.final_position.y, "m");
+    case phys::ShotStatus::pocketed:
+      return "none: pocketed at x = " + number(p.final_position.x, "m") +
+             ", y = " + number(p.final_position.y, "m");
+    case phys::ShotStatus::hit_obstacle:
+      return "none: stopped against an obstacle ball at x = " + number(p.final_position.x, "m") +
+             ", y = " + number(p.final_position.y, "m");
+    default:
+      (void)problem;
+      return std::string("none: ") + phys::to_string(p.outcome);
+  }
+}
+
+std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) {
+  if (!std::isfinite(p.miss_distance)) return "none: the ball did not come to rest on the table";
+  const bool inside = p.miss_distance <= problem.tolerance;
+  return fixed("%.3g mm", 1000.0 * p.miss_distance) + " (tolerance " +
+         number(1000.0 * problem.tolerance, "mm") +
+         "): " + (inside ? "inside the target zone" : "outside the target zone");
+}
+
+std::string success_text(const plan::PlannerOptions& options, double probability) {
+  if (options.robustness_samples == 0) return "not estimated (--samples 0)";
+  return fixed("%.1f %%", 100.0 * probability) + " of " +
+         std::to_string(options.robustness_samples) +
+         " noisy strokes stop in the zone (noise: " + noise_text(options.noise) + ")";
+}
+
+// ---------------------------------------------------------------------------
+// Text
+
+void write_text(std::ostream& out, const prob::Problem& problem,
+                const plan::PlannerOptions& options, const plan::PlanResult& r,
+                const std::string& svg_file) {
+  const auto line = [&](const char* label, const std::string& text) {
+    char buf[24];
+    std::snprintf(buf, sizeof buf, "%-16s", label);
+    out << buf << text << '\n';
+  };
+  const plan::PlannedShot& b = r.best;
+  const phys::Shot& s = b.shot;
+  const double spin_unit = s.speed / problem.scene.radius();  // rad/s per unit of k
+
+  line("problem", problem.name + "  (" + problem.source + ")");
+  line("status", plan::to_string(r.status));
+  line("summary", r.message);
+  line("shot", "V = " + number(s.speed, "m/s") + " at aim " + number(s.aim_deg, "deg") +
+                   ", k_T = " + number(s.topspin_k) + " (w_T = " +
+                   number(s.topspin_k * spin_unit, "rad/s") + "), k_S = " + number(s.sidespin_k) +
+                   " (w_S = " + number(s.sidespin_k * spin_unit, "rad/s") + ")");
+  line("stroke", plan::describe_stroke(s));
+  line("tip offset", tip_offset_text(s, problem.limits));
+  line("landing", landing_text(problem, b));
+  line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
+                     ", tolerance " + number(problem.tolerance, "m"));
+  line("miss distance", miss_text(problem, b));
+  line("success", success_text(options, b.success_probability));
+  line("route", route_text(problem.scene, b.route));
+  line("family", b.family);
+  const std::vector<ConstraintRow> rows = constraints(problem, b, options.enforce_rigid_limit);
+  int broken = 0;
+  for (const ConstraintRow& c : rows) broken += std::string(c.state) == "broken" ? 1 : 0;
+  line("constraints", broken == 0 ? "all met" : std::to_string(broken) + " broken");
+  for (const ConstraintRow& c : rows) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "    %-13s %-8s", c.name, c.state);
+    out << buf << c.detail << '\n';
+  }
+  line("evaluations", std::to_string(r.evaluations) + " shot simulations (" +
+                          std::to_string(r.local_searches) + " local searches, " +
+                          std::to_string(r.converged_searches) + " converged)");
+  line("time", fixed("%.3g s", r.time_s));
+  line("search",
+       std::string(plan::to_string(options.global)) + " then " + plan::to_string(options.local) +
+           " from " + std::to_string(options.local_starts) + " starts; budget " +
+           std::to_string(options.max_evaluations) + " simulations or " +
+           number(options.max_time_s, "s") + "; seed " + std::to_string(options.seed) + "; " +
+           std::to_string(options.threads) + (options.threads == 1 ? " thread" : " threads") +
+           (options.robust ? "; robust (maximises the success probability)" : ""));
+  line("method", "search " + method_text(options.simulation, problem.scene) +
+                     "; reported outcome " + phys::to_string(b.impact_method));
+  if (!svg_file.empty()) line("drawing", svg_file);
+
+  line("alternatives", r.alternatives.empty() ? std::string("none")
+                                              : std::to_string(r.alternatives.size()) +
+                                                    " (other families, best first)");
+  if (r.alternatives.empty()) return;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "  %2s %8s %10s %7s %7s %10s %8s  %-6s %-28s %s", "#", "V (m/s)",
+                "aim (deg)", "k_T", "k_S", "miss (mm)", "success", "solves", "route", "stroke");
+  out << buf << '\n';
+  for (size_t i = 0; i < r.alternatives.size(); ++i) {
+    const plan::PlannedShot& a = r.alternatives[i];
+    const std::string miss =
+        std::isfinite(a.miss_distance) ? fixed("%.3g", 1000.0 * a.miss_distance) : "-";
+    const std::string success =
+        options.robustness_samples == 0 ? "-" : fixed("%.1f %%", 100.0 * a.success_probability);
+    std::string route = route_text(problem.scene, a.route);
+    if (a.outcome != phys::ShotStatus::rest)
+      route += std::string(", ") + phys::to_string(a.outcome);
+    std::snprintf(buf, sizeof buf, "  %2zu %8.4f %10.3f %7.3f %7.3f %10s %8s  %-6s %-28s %s", i + 1,
+                  a.shot.speed, a.shot.aim_deg, a.shot.topspin_k, a.shot.sidespin_k, miss.c_str(),
+                  success.c_str(), a.solves ? "yes" : "no", route.c_str(),
+                  plan::describe_stroke(a.shot).c_str());
+    out << buf << '\n';
+  }
+}
+
+// ---------------------------------------------------------------------------
+// JSON
+
+ordered_json vec(phys::Vec2 v) { return {v.x, v.y}; }
+
+ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot& p,
+                          const plan::PlannerOptions& options) {
+  ordered_json j;
+  j["shot"] = {{"speed", p.shot.speed},
+               {"aim_deg", p.shot.aim_deg},
+               {"topspin_k", p.shot.topspin_k},
+               {"sidespin_k", p.shot.sidespin_k}};
+  const plan::TipOffset t = plan::tip_offset(p.shot);
+  j["tip_offset"] = {{"right", t.right}, {"up", t.up}};
+  j["stroke"] = plan::describe_stroke(p.shot);
+  j["outcome"] = phys::to_string(p.outcome);
+  j["final_position"] = vec(p.final_position);
+  // null when the ball did not come to rest on the table (JSON has no infinity)
+  j["miss_distance"] =
+      std::isfinite(p.miss_distance) ? ordered_json(p.miss_distance) : ordered_json();
+  j["success_probability"] = p.success_probability;
+  j["solves"] = p.solves;
+  j["cushion_hits"] = p.cushion_hits;
+  j["route"] = p.route;
+  ordered_json names = ordered_json::array();
+  for (int c : p.route) names.push_back(cushion_name(problem.scene, c));
+  j["route_names"] = names;
+  j["family"] = p.family;
+  j["within_limits"] = p.within_limits;
+  j["violations"] = p.violations;
+  ordered_json rows = ordered_json::object();
+  for (const ConstraintRow& c : constraints(problem, p, options.enforce_rigid_limit))
+    rows[c.key] = {{"state", c.state}, {"detail", c.detail}};
+  j["constraints"] = rows;
+  j["max_cushion_normal_speed"] = p.max_cushion_normal_speed;
+  j["rigid_limit_exceeded"] = p.rigid_limit_exceeded;
+  j["impact_method"] = phys::to_string(p.impact_method);
+  return j;
+}
+
+void write_json(std::ostream& out, const prob::Problem& problem,
+                const plan::PlannerOptions& options, const plan::PlanResult& r,
+                const std::string& svg_file) {
+  ordered_json j;
+  j["problem"] = {{"name", problem.name}, {"source", problem.source}};
+  j["status"] = plan::to_string(r.status);
+  j["message"] = r.message;
+  const ordered_json best = planned_json(problem, r.best, options);
+  for (const auto& [key, value] : best.items()) j[key] = value;
+  j["evaluations"] = r.evaluations;
+  j["time_s"] = r.time_s;
+  j["local_searches"] = r.local_searches;
+  j["converged_searches"] = r.converged_searches;
+  ordered_json alternatives = ordered_json::array();
+  for (const plan::PlannedShot& a : r.alternatives)
+    alternatives.push_back(planned_json(problem, a, options));
+  j["alternatives"] = alternatives;
+  j["target"] = vec(problem.target);
+  j["tolerance"] = problem.tolerance;
+  j["cue_ball"] = vec(problem.cue_ball);
+  j["options"] = {{"global", plan::to_string(options.global)},
+                  {"local", plan::to_string(options.local)},
+                  {"max_evaluations", options.max_evaluations},
+                  {"max_time_s", options.max_time_s},
+                  {"starts", options.local_starts},
+                  {"seed", options.seed},
+                  {"robust", options.robust},
+                  {"noise",
+                   {{"scale", options.noise.scale},
+                    {"aim_deg", options.noise.aim_deg},
+                    {"speed", options.noise.speed},
+                    {"tip_offset", options.noise.tip_offset}}},
+                  {"samples", options.robustness_samples},
+                  {"enforce_rigid_limit", options.enforce_rigid_limit},
+                  {"alternatives", options.max_alternatives},
+                  {"method", phys::to_string(options.simulation.impact_method)},
+                  {"impact_accuracy", options.simulation.impact_accuracy}};
+  if (!svg_file.empty()) j["svg"] = svg_file;
+  j["units"] = {{"frame",
+                 "table: origin where the cushion noses x = 0 and y = 0 meet, x along the "
+                 "length, y along the width"},
+                {"speed", "m/s"},
+                {"aim_deg", "deg from +x, counter-clockwise"},
+                {"topspin_k", "k_T = w_T R / V (1: natural roll, < 0: draw)"},
+                {"sidespin_k", "k_S = w_S R / V, > 0 right spin"},
+                {"tip_offset", "d / R, the cue tip's offset from centre (k = 2.5 d / R)"},
+                {"final_position", "m"},
+                {"miss_distance", "m"},
+                {"success_probability", "fraction of noisy strokes, 0..1"},
+                {"time_s", "s"},
+                {"max_cushion_normal_speed", "m/s"},
+                {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"}};
+  out << j.dump(2) << '\n';
+}
+
+// ---------------------------------------------------------------------------
+// SVG: the best path in full, the alternatives faint.
+
+DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
+                  const phys::SimulationOptions& search, bool faint) {
+  // Simulated as the reported outcome was: with the method that gave it.
+  phys::SimulationOptions options = search;
+  options.record_path = true;
+  if (p.impact_method != phys::ImpactMethod::table &&
+      search.impact_method == phys::ImpactMethod::table) {
+    options.impact_method = phys::ImpactMethod::exact;
+    options.impact_accuracy = 1e-9;
+  }
+  const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, p.shot, options);
+  return {r.path, r.events, faint};
+}
+
+TableDrawing drawing_of(const prob::Problem& problem, const plan::PlannerOptions& options,
+                        const plan::PlanResult& r) {
+  const plan::PlannedShot& b = r.best;
+  TableDrawing d;
+  d.scene = problem.scene;
+  d.cue_ball = problem.cue_ball;
+  d.target = TargetZone{problem.target, problem.tolerance};
+  for (const plan::PlannedShot& a : r.alternatives)
+    d.paths.push_back(path_of(problem, a, options.simulation, true));
+  d.paths.push_back(path_of(problem, b, options.simulation, false));
+  if (!r.alternatives.empty())
+    d.faint_legend = std::to_string(r.alternatives.size()) +
+                     (r.alternatives.size() == 1 ? " alternative stroke" : " alternative strokes");
+
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "%s: %s, aim %.4g\u00b0", problem.name.c_str(),
+                plan::describe_stroke(b.shot).c_str(), b.shot.aim_deg);
+  d.title = buf;
+  std::snprintf(buf, sizeof buf,
+                "%s. V = %.4g m/s, aim %.4g\u00b0, k_{T} = %.3g, k_{S} = %.3g (tip %.3f R right, "
+                "%.3f R up).",
+                r.status == plan::PlanStatus::solved        ? "Solved"
+                : r.status == plan::PlanStatus::unreachable ? "Unreachable; the nearest stroke"
+                                                            : "Budget exhausted; the best stroke",
+                b.shot.speed, b.shot.aim_deg, b.shot.topspin_k, b.shot.sidespin_k,
+                plan::tip_offset(b.shot).right, plan::tip_offset(b.shot).up);
+  d.caption.push_back(buf);
+  std::string outcome;
+  if (std::isfinite(b.miss_distance)) {
+    std::snprintf(buf, sizeof buf, "Stops %.3g mm from the target after %s",
+                  1000.0 * b.miss_distance, route_text(problem.scene, b.route).c_str());
+    outcome = buf;
+  } else {
+    outcome = std::string("Ends ") + phys::to_string(b.outcome) + " after " +
+              route_text(problem.scene, b.route);
+  }
+  if (options.robustness_samples > 0)
+    outcome += "; " + fixed("%.0f %%", 100.0 * b.success_probability) +
+               " of noisy strokes succeed (noise \u00d7" + number(options.noise.scale) + ")";
+  d.caption.push_back(outcome + ".");
+  if (!r.alternatives.empty())
+    d.caption.push_back(
+        "Faint grey: the alternatives (other routes or spins), listed by cueplan solve.");
+  return d;
+}
+
+}  // namespace
+
+SolveCommand::SolveCommand(CLI::App& parent) {
+  command_ = parent.add_subcommand(
+      "solve",
+      "Plan the stroke - speed, aim, topspin, sidespin - that leaves the cue ball on a "
+      "problem's target, and report it in a player's terms with its chance of success and "
+      "its alternatives.");
+  CLI::App& c = *command_;
+  c.add_option("PROBLEM", args_.problem_file,
+               "Problem file (YAML, problems/README.md): table, cue ball, target, limits")
+      ->required()
+      ->type_name("FILE.yaml");
+
+  add_planner_flags(c, &args_.planner, "Search");
+  c.add_option("--threads", args_.threads,
+               "Threads for the independent local starts (and a table build); 0: one per core. "
+               "The answer does not depend on it while the evaluation budget ends the search")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group("Search");
+  add_impact_flags(c, &args_.impact, "Cushion impacts");
+
+  const char* output = "Output";
+  c.add_flag("--json", args_.json,
+             "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
+             "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
+             "evaluations, time_s, alternatives (same shape), constraints, ...")
+      ->group(output);
+  c.add_option("--svg", args_.svg_file,
+               "Also draw the plan as an SVG file: the table, the target zone, the best stroke's "
+               "path and the alternatives' paths dimmed")
+      ->type_name("FILE.svg")
+      ->group(output);
+
+  c.footer(
+      "Status: solved (exit 0); unreachable - the search converged everywhere it looked "
+      "without reaching the target - or budget_exhausted (exit 1; the best stroke found is "
+      "still reported); bad input exits 2.\n"
+      "Example: cueplan solve problems/one_rail_position.yaml --seed 7 --svg plan.svg");
+}
+
+bool SolveCommand::selected() const { return command_->parsed(); }
+
+int SolveCommand::run(std::ostream& out, std::ostream& err) const {
+  const auto usage = [&](const std::string& why) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  };
+
+  // Flags first, then the problem: whole-input errors come before any table is built.
+  phys::SimulationOptions simulation;
+  if (std::string why = read_impact_options(args_.impact, &simulation); !why.empty())
+    return usage(why);
+  plan::PlannerOptions options;
+  if (std::string why = read_planner_options(args_.planner, args_.threads, simulation, &options);
+      !why.empty())
+    return usage(why);
+  const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
+  if (!loaded.ok()) return usage(loaded.error);
+  const prob::Problem& problem = *loaded.problem;
+
+  phys::ImpactTable table;
+  if (simulation.impact_method == phys::ImpactMethod::table) {
+    const int code =
+        prepare_impact_table(kCommandName, problem.scene, args_.impact.table_cache, args_.threads,
+                             command_->count("--accuracy") > 0, &table, &simulation, err);
+    if (code != kExitOk) return code;
+    options.simulation = simulation;
+  }
+
+  const plan::PlanResult result = plan::plan(problem, options);
+  if (result.status == plan::PlanStatus::invalid_input) return usage(result.message);
+
+  // The drawing first: if it cannot be written, nothing else is printed.
+  if (!args_.svg_file.empty()) {
+    const std::string svg = render_table_svg(drawing_of(problem, options, result));
+    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+      return usage("--svg: " + why);
+  }
+  if (args_.json)
+    write_json(out, problem, options, result, args_.svg_file);
+  else
+    write_text(out, problem, options, result, args_.svg_file);
+  if (!out) return kExitFailed;
+  return result.status == plan::PlanStatus::solved ? kExitOk : kExitFailed;
+}
+
+}  // namespace cueplan::cli

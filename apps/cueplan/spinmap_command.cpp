@@ -1,0 +1,500 @@
+#include "spinmap_command.hpp"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/spin_map.hpp"
+#include "cueplan/problems/problem.hpp"
+#include "exit_codes.hpp"
+#include "output_file.hpp"
+#include "parallel.hpp"
+#include "shot_words.hpp"
+#include "spin_map_drawing.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+namespace plan = cueplan::planner;
+namespace prob = cueplan::problems;
+using nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kCommandName = "cueplan spinmap";
+constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue strike")
+constexpr int kSamplePathsPerSide = 5;     // faint paths: about 5 x 5 spins of the grid
+
+std::string number(double value, const char* unit = nullptr) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  std::string s = buf;
+  if (unit) s += std::string(" ") + unit;
+  return s;
+}
+
+std::string fixed(const char* pattern, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, pattern, value);
+  return buf;
+}
+
+std::string cushions_allowed(const prob::Limits& limits) {
+  return limits.cushions_min == limits.cushions_max
+             ? std::to_string(limits.cushions_min)
+             : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
+}
+
+enum class PictureFormat { svg, png };
+
+std::optional<PictureFormat> format_of(const std::string& file) {
+  std::string ext = std::filesystem::path(file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".svg") return PictureFormat::svg;
+  if (ext == ".png") return PictureFormat::png;
+  return std::nullopt;
+}
+
+// A progress bar on a terminal's stderr, drawn once the work has taken a moment and
+// redrawn as the fraction grows; nothing at all when stderr is not a terminal.
+class ProgressBar {
+ public:
+  ProgressBar(std::ostream& err, std::string label)
+      : err_(err),
+        label_(std::move(label)),
+        enabled_(::isatty(STDERR_FILENO) == 1),
+        started_(Clock::now()) {}
+  ~ProgressBar() { finish(); }
+
+  void update(double fraction) {
+    if (!enabled_) return;
+    if (!drawn_ && Clock::now() - started_ < std::chrono::milliseconds(300)) return;
+    const int percent = static_cast<int>(std::floor(100.0 * std::clamp(fraction, 0.0, 1.0)));
+    if (drawn_ && percent == shown_) return;
+    constexpr int kWidth = 32;
+    const int filled = percent * kWidth / 100;
+    err_ << '\r' << label_ << " [" << std::string(static_cast<size_t>(filled), '#')
+         << std::string(static_cast<size_t>(kWidth - filled), '.') << "] " << percent << " %"
+         << std::flush;
+    drawn_ = true;
+    shown_ = percent;
+  }
+
+  void finish() {
+    if (drawn_) err_ << '\n' << std::flush;
+    drawn_ = false;
+    enabled_ = false;
+  }
+
+ private:
+  std::ostream& err_;
+  std::string label_;
+  bool enabled_;
+  Clock::time_point started_;
+  bool drawn_ = false;
+  int shown_ = -1;
+};
+
+// The spins that land, as ranges of k and of tip offset.
+struct LandingRange {
+  double kt_min = INFINITY, kt_max = -INFINITY, ks_min = INFINITY, ks_max = -INFINITY;
+};
+
+LandingRange landing_range(const plan::SpinMap& map) {
+  LandingRange r;
+  for (const plan::SpinMapPoint& p : map.points) {
+    if (!p.lands) continue;
+    r.kt_min = std::min(r.kt_min, p.topspin_k);
+    r.kt_max = std::max(r.kt_max, p.topspin_k);
+    r.ks_min = std::min(r.ks_min, p.sidespin_k);
+    r.ks_max = std::max(r.ks_max, p.sidespin_k);
+  }
+  return r;
+}
+
+// The spin that stops nearest the target after an allowed number of cushions, if any.
+const plan::SpinMapPoint* nearest(const plan::SpinMap& map, const prob::Limits& limits) {
+  const plan::SpinMapPoint* best = nullptr;
+  for (const plan::SpinMapPoint& p : map.points)
+    if (classify(p, limits) == SpinCellKind::distance &&
+        (!best || p.miss_distance < best->miss_distance))
+      best = &p;
+  return best;
+}
+
+std::string tip_words(double right, double up) {
+  return fixed("%.3f", std::abs(right)) + " R " + (right < 0.0 ? "left" : "right") + ", " +
+         fixed("%.3f", std::abs(up)) + " R " + (up < 0.0 ? "below" : "above");
+}
+
+// A range of tip offsets along one axis in words, e.g. "from 0.1 R left to 0.2 R right of
+// centre" or "0.24 R to 0.31 R above centre".
+std::string offset_range(double lo, double hi, const char* negative, const char* positive,
+                         const char* centre) {
+  const auto side = [&](double v) { return v < 0.0 ? negative : positive; };
+  const auto amount = [](double v) { return fixed("%.3g", std::abs(v)) + " R"; };
+  if (lo == hi) return amount(lo) + " " + side(lo) + centre;
+  if ((lo < 0.0) == (hi < 0.0) || lo == 0.0) {
+    const double near = lo < 0.0 ? hi : lo;
+    const double far = lo < 0.0 ? lo : hi;
+    return amount(near) + " to " + amount(far) + " " + side(far) + centre;
+  }
+  return "from " + amount(lo) + " " + side(lo) + " to " + amount(hi) + " " + side(hi) + centre;
+}
+
+struct Counts {
+  int kinds[5] = {0, 0, 0, 0, 0};
+  int of(SpinCellKind k) const { return kinds[static_cast<int>(k)]; }
+};
+
+Counts counts_of(const plan::SpinMap& map, const prob::Limits& limits) {
+  Counts c;
+  for (const plan::SpinMapPoint& p : map.points) ++c.kinds[static_cast<int>(classify(p, limits))];
+  return c;
+}
+
+// Where the speed and aim came from.
+struct StrokeSource {
+  bool planned = false;
+  plan::PlanResult plan;  // when planned
+};
+
+std::string source_text(const StrokeSource& source) {
+  if (!source.planned) return "given by --speed and --aim";
+  const phys::Shot& s = source.plan.best.shot;
+  return "from the planner's best stroke (no --speed and --aim given; " +
+         std::string(plan::to_string(source.plan.status)) + ", with k_T = " + number(s.topspin_k) +
+         ", k_S = " + number(s.sidespin_k) + ": " + plan::describe_stroke(s) + ")";
+}
+
+void write_text(std::ostream& out, const prob::Problem& problem, const plan::SpinMap& map,
+                const StrokeSource& source, const phys::SimulationOptions& simulation,
+                const std::string& file, double seconds) {
+  const auto line = [&](const char* label, const std::string& text) {
+    char buf[24];
+    std::snprintf(buf, sizeof buf, "%-16s", label);
+    out << buf << text << '\n';
+  };
+  const prob::Limits& limits = problem.limits;
+  line("problem", problem.name + "  (" + problem.source + ")");
+  line("stroke", "V = " + number(map.speed, "m/s") + " at aim " + number(map.aim_deg, "deg") +
+                     ", " + source_text(source));
+  line("grid", std::to_string(map.grid) +
+                   " points across the disc: " + std::to_string(map.points.size()) +
+                   " spins with sqrt(k_T^2 + k_S^2) <= " + number(map.spin_max) +
+                   " (tip offset up to " + number(map.spin_max / kSpinPerTipOffset) + " R)");
+  line("landing", std::to_string(map.landing) + " of " + std::to_string(map.points.size()) +
+                      " spins stop within " + number(1000.0 * problem.tolerance, "mm") +
+                      " of the target after " + cushions_allowed(limits) +
+                      (limits.cushions_max == 1 ? " cushion" : " cushions"));
+  if (map.landing > 0) {
+    const LandingRange r = landing_range(map);
+    line("landing spins",
+         "k_T " + fixed("%.3g", r.kt_min) + " to " + fixed("%.3g", r.kt_max) + ", k_S " +
+             fixed("%.3g", r.ks_min) + " to " + fixed("%.3g", r.ks_max) + ": tip " +
+             offset_range(r.ks_min / kSpinPerTipOffset, r.ks_max / kSpinPerTipOffset, "left",
+                          "right", " of centre") +
+             ", " +
+             offset_range(r.kt_min / kSpinPerTipOffset, r.kt_max / kSpinPerTipOffset, "below",
+                          "above", " centre"));
+  }
+  if (const plan::SpinMapPoint* p = nearest(map, limits))
+    line("nearest", fixed("%.3g mm", 1000.0 * p->miss_distance) + " from the target with k_T = " +
+                        number(p->topspin_k) + ", k_S = " + number(p->sidespin_k) + " (tip " +
+                        tip_words(p->tip_right, p->tip_up) + " centre)");
+  const Counts c = counts_of(map, limits);
+  line("outcomes",
+       std::to_string(c.of(SpinCellKind::distance)) + " at rest after " + cushions_allowed(limits) +
+           (limits.cushions_max == 1 ? " cushion, " : " cushions, ") +
+           std::to_string(c.of(SpinCellKind::wrong_cushions)) + " at rest after another number, " +
+           std::to_string(c.of(SpinCellKind::pocketed)) + " pocketed, " +
+           std::to_string(c.of(SpinCellKind::obstacle)) + " against an obstacle, " +
+           std::to_string(c.of(SpinCellKind::no_result)) + " without an outcome");
+  line("method", method_text(simulation, problem.scene));
+  line("picture", file);
+  line("time", fixed("%.3g s", seconds));
+}
+
+ordered_json point_json(const plan::SpinMapPoint& p) {
+  return {{"topspin_k", p.topspin_k},
+          {"sidespin_k", p.sidespin_k},
+          {"tip_right", p.tip_right},
+          {"tip_up", p.tip_up},
+          {"final_position", {p.final_position.x, p.final_position.y}},
+          {"miss_distance",
+           std::isfinite(p.miss_distance) ? ordered_json(p.miss_distance) : ordered_json()},
+          {"cushion_hits", p.cushion_hits}};
+}
+
+void write_json(std::ostream& out, const prob::Problem& problem, const plan::SpinMap& map,
+                const StrokeSource& source, const phys::SimulationOptions& simulation,
+                const std::string& file, PictureFormat format, double seconds) {
+  ordered_json j;
+  j["problem"] = {{"name", problem.name}, {"source", problem.source}};
+  j["speed"] = map.speed;
+  j["aim_deg"] = map.aim_deg;
+  j["stroke_source"] = source.planned ? "planner" : "given";
+  if (source.planned) {
+    const phys::Shot& s = source.plan.best.shot;
+    j["planner"] = {{"status", plan::to_string(source.plan.status)},
+                    {"message", source.plan.message},
+                    {"shot",
+                     {{"speed", s.speed},
+                      {"aim_deg", s.aim_deg},
+                      {"topspin_k", s.topspin_k},
+                      {"sidespin_k", s.sidespin_k}}}};
+  }
+  j["grid"] = map.grid;
+  j["spin_max"] = map.spin_max;
+  j["points"] = map.points.size();
+  j["landing"] = map.landing;
+  ordered_json landing = ordered_json::array();
+  for (const plan::SpinMapPoint& p : map.points)
+    if (p.lands) landing.push_back(point_json(p));
+  j["landing_spins"] = landing;
+  const plan::SpinMapPoint* p = nearest(map, problem.limits);
+  j["nearest"] = p ? point_json(*p) : ordered_json();
+  const Counts c = counts_of(map, problem.limits);
+  j["outcomes"] = {{"at_rest_allowed_cushions", c.of(SpinCellKind::distance)},
+                   {"at_rest_other_cushions", c.of(SpinCellKind::wrong_cushions)},
+                   {"pocketed", c.of(SpinCellKind::pocketed)},
+                   {"hit_obstacle", c.of(SpinCellKind::obstacle)},
+                   {"no_outcome", c.of(SpinCellKind::no_result)}};
+  j["target"] = {problem.target.x, problem.target.y};
+  j["tolerance"] = problem.tolerance;
+  j["method"] = phys::to_string(phys::chosen_impact_method(problem.scene, simulation));
+  j["out"] = file;
+  j["format"] = format == PictureFormat::svg ? "svg" : "png";
+  j["time_s"] = seconds;
+  j["units"] = {{"speed", "m/s"},
+                {"aim_deg", "deg from +x, counter-clockwise"},
+                {"topspin_k", "k_T = w_T R / V"},
+                {"sidespin_k", "k_S = w_S R / V, > 0 right spin"},
+                {"tip_right", "d / R, > 0 right of centre (k = 2.5 d / R)"},
+                {"tip_up", "d / R, > 0 above centre"},
+                {"final_position", "m, table frame"},
+                {"miss_distance", "m"},
+                {"tolerance", "m"},
+                {"time_s", "s"}};
+  out << j.dump(2) << '\n';
+}
+
+SpinMapPicture picture_of(const prob::Problem& problem, const plan::SpinMap& map,
+                          const StrokeSource& source, const phys::SimulationOptions& simulation) {
+  SpinMapPicture picture;
+  picture.problem = problem;
+  picture.map = map;
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "What spin lands here? %s: V = %.4g m/s, aim %.4g\u00b0",
+                problem.name.c_str(), map.speed, map.aim_deg);
+  picture.title = buf;
+  std::snprintf(
+      buf, sizeof buf,
+      "Each cell is one tip offset struck at this speed and aim, coloured by how far from "
+      "the target the cue ball stops; %d of %zu spins land (outlined).",
+      map.landing, map.points.size());
+  picture.caption.push_back(buf);
+  if (source.planned)
+    picture.caption.push_back("Speed and aim are the planner's best stroke (" +
+                              std::string(plan::to_string(source.plan.status)) +
+                              "); its own spin is ringed, its path drawn in full.");
+  else
+    picture.caption.push_back(
+        "Speed and aim as given. Tip offset d from centre gives spin k = 2.5 d/R.");
+
+  // Faint paths of a few spins, and the planner's stroke in full.
+  phys::SimulationOptions paths = simulation;
+  paths.record_path = true;
+  for (size_t i : sparse_subset(map, kSamplePathsPerSide)) {
+    const plan::SpinMapPoint& p = map.points[i];
+    const phys::ShotResult r =
+        phys::simulate(problem.scene, problem.cue_ball,
+                       {map.speed, map.aim_deg, p.topspin_k, p.sidespin_k}, paths);
+    picture.sample_paths.push_back({r.path, {}, true});
+  }
+  if (source.planned) {
+    // As the planner reported its outcome: with the exact method when it verified so.
+    phys::SimulationOptions planned = paths;
+    if (source.plan.best.impact_method != phys::ImpactMethod::table &&
+        planned.impact_method == phys::ImpactMethod::table) {
+      planned.impact_method = phys::ImpactMethod::exact;
+      planned.impact_accuracy = 1e-9;
+    }
+    const phys::ShotResult r =
+        phys::simulate(problem.scene, problem.cue_ball, source.plan.best.shot, planned);
+    picture.shot_path = DrawnPath{r.path, r.events, false};
+    picture.marked_shot = source.plan.best.shot;
+  }
+  return picture;
+}
+
+}  // namespace
+
+SpinmapCommand::SpinmapCommand(CLI::App& parent) {
+  command_ = parent.add_subcommand(
+      "spinmap",
+      "What spin lands here? For one speed and aim, draw every spin over the tip-offset disc "
+      "coloured by where the cue ball stops, the spins that land on the target outlined, and "
+      "the table with each spin's rest position.");
+  CLI::App& c = *command_;
+  c.add_option("PROBLEM", args_.problem_file,
+               "Problem file (YAML, problems/README.md): table, cue ball, target, limits")
+      ->required()
+      ->type_name("FILE.yaml");
+  c.add_option("--out", args_.out_file, "The picture to write: SVG or PNG, by the file's extension")
+      ->required()
+      ->type_name("FILE.svg|FILE.png");
+
+  const char* stroke = "Stroke";
+  c.add_option("--speed", args_.speed,
+               "Cue-ball speed V (m/s), > 0; with --aim. Without both, the planner's best stroke "
+               "gives the speed and aim")
+      ->type_name("m/s")
+      ->group(stroke);
+  c.add_option("--aim", args_.aim_deg, "Aim (deg from +x, counter-clockwise); with --speed")
+      ->type_name("deg")
+      ->group(stroke);
+  c.add_option("--grid", args_.grid,
+               "Spins across the disc's diameter, 3 to 1001 (odd keeps centre ball); the map "
+               "simulates about 0.785 grid^2 strokes")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(stroke);
+  c.add_option("--threads", args_.threads,
+               "Threads for the map (and the planner, a table build); 0: one per core. The map is "
+               "the same for any count")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(stroke);
+  add_impact_flags(c, &args_.impact, "Cushion impacts");
+  add_planner_flags(c, &args_.planner, "Planner (only without --speed and --aim)");
+  c.add_flag("--json", args_.json,
+             "Print a JSON summary instead of text: speed, aim_deg, stroke_source, grid, points, "
+             "landing, landing_spins, nearest, outcomes, out")
+      ->group("Output");
+
+  c.footer(
+      "The disc: tip offset right of centre along x, above centre along y, as fractions of the "
+      "ball radius R (k = 2.5 d/R); the dashed circle is the spin limit. Colour: distance from "
+      "the target where the ball stops (log scale, mm); grey cells stop after a cushion count "
+      "the problem does not allow, hatched ones are pocketed.\n"
+      "Exit codes: 0 picture written, 1 it could not be had, 2 bad input.\n"
+      "Example: cueplan spinmap problems/one_rail_position.yaml --speed 1.002 --aim -60.36 "
+      "--out spin.svg");
+}
+
+bool SpinmapCommand::selected() const { return command_->parsed(); }
+
+bool SpinmapCommand::given(const char* flag) const { return command_->count(flag) > 0; }
+
+int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
+  const auto usage = [&](const std::string& why) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  };
+  const Clock::time_point started = Clock::now();
+
+  // Flags first, then the problem: whole-input errors come before any table is built.
+  const std::optional<PictureFormat> format = format_of(args_.out_file);
+  if (!format) return usage("--out must name a .svg or .png file, got '" + args_.out_file + "'");
+  const bool speed_given = given("--speed");
+  if (speed_given != given("--aim"))
+    return usage(std::string(speed_given ? "--aim" : "--speed") + " is required with " +
+                 (speed_given ? "--speed" : "--aim") +
+                 ": give both, or neither to use the planner's best stroke");
+  if (speed_given && (!std::isfinite(args_.speed) || !(args_.speed > 0.0)))
+    return usage("--speed must be finite and above 0 (m/s), got " + number(args_.speed));
+  if (speed_given && !std::isfinite(args_.aim_deg))
+    return usage("--aim must be finite (deg), got " + number(args_.aim_deg));
+  if (args_.grid < 3 || args_.grid > 1001)
+    return usage("--grid must be 3 to 1001 points across the disc, got " +
+                 std::to_string(args_.grid));
+  if (args_.threads < 0)
+    return usage("--threads must be 0 (one per core) or more, got " +
+                 std::to_string(args_.threads));
+  phys::SimulationOptions simulation;
+  if (std::string why = read_impact_options(args_.impact, &simulation); !why.empty())
+    return usage(why);
+  plan::PlannerOptions planner_options;
+  if (!speed_given)
+    if (std::string why =
+            read_planner_options(args_.planner, args_.threads, simulation, &planner_options);
+        !why.empty())
+      return usage(why);
+  const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
+  if (!loaded.ok()) return usage(loaded.error);
+  const prob::Problem& problem = *loaded.problem;
+
+  phys::ImpactTable table;
+  if (simulation.impact_method == phys::ImpactMethod::table) {
+    const int code =
+        prepare_impact_table(kCommandName, problem.scene, args_.impact.table_cache, args_.threads,
+                             given("--accuracy"), &table, &simulation, err);
+    if (code != kExitOk) return code;
+    planner_options.simulation = simulation;
+  }
+
+  // The stroke: given, or the planner's best.
+  StrokeSource source;
+  double speed = args_.speed;
+  double aim_deg = args_.aim_deg;
+  if (!speed_given) {
+    if (::isatty(STDERR_FILENO) == 1)
+      err << kCommandName << ": no --speed and --aim: planning the stroke first (up to "
+          << number(planner_options.max_time_s, "s") << ")\n";
+    source.planned = true;
+    source.plan = plan::plan(problem, planner_options);
+    if (source.plan.status == plan::PlanStatus::invalid_input) return usage(source.plan.message);
+    speed = source.plan.best.shot.speed;
+    aim_deg = source.plan.best.shot.aim_deg;
+  }
+
+  plan::SpinMapOptions map_options;
+  map_options.grid = args_.grid;
+  map_options.threads = static_cast<int>(thread_count(
+      args_.threads, static_cast<size_t>(args_.grid) * static_cast<size_t>(args_.grid)));
+  map_options.simulation = simulation;
+  ProgressBar bar(err, std::string(kCommandName) + ": simulating " + std::to_string(args_.grid) +
+                           " x " + std::to_string(args_.grid) + " spins");
+  map_options.progress = [&bar](double fraction) { bar.update(fraction); };
+  const plan::SpinMap map = plan::spin_map(problem, speed, aim_deg, map_options);
+  bar.finish();
+  if (!map.message.empty()) return usage(map.message);
+  if (map.points.empty()) {
+    err << kCommandName << ": no spin lies within the disc\n";
+    return kExitFailed;
+  }
+
+  const SpinMapPicture picture = picture_of(problem, map, source, simulation);
+  std::string bytes;
+  try {
+    bytes =
+        *format == PictureFormat::svg ? render_spin_map_svg(picture) : render_spin_map_png(picture);
+  } catch (const std::exception& e) {
+    err << kCommandName << ": cannot draw the picture: " << e.what() << '\n';
+    return kExitFailed;
+  }
+  if (std::string why = write_file_atomically(args_.out_file, bytes); !why.empty())
+    return usage("--out: " + why);
+
+  const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  if (args_.json)
+    write_json(out, problem, map, source, simulation, args_.out_file, *format, seconds);
+  else
+    write_text(out, problem, map, source, simulation, args_.out_file, seconds);
+  return out ? kExitOk : kExitFailed;
+}
+
+}  // namespace cueplan::cli

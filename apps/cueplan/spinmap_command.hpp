@@ -1,0 +1,55 @@
+// `cueplan spinmap PROBLEM --out FILE`: the teaching tool, "what spin lands here". For
+// one speed and aim (given, or the planner's best stroke), planner::spin_map simulates
+// every spin on a grid over the tip-offset disc; the picture (SVG or PNG) shows each
+// spin coloured by how far from the target it stops, the spins that land outlined,
+// and beside it the table with every spin's rest position.
+#pragma once
+
+#include <cmath>
+#include <iosfwd>
+#include <string>
+
+#include "impact_setup.hpp"
+#include "planner_flags.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace cueplan::cli {
+
+// What the command line asked for, in the flags' units.
+struct SpinmapArgs {
+  std::string problem_file;  // PROBLEM, a YAML problem file
+  std::string out_file;      // --out, .svg or .png
+  double speed = NAN;        // m/s, --speed (with --aim; neither: the planner's)
+  double aim_deg = NAN;      // deg from +x, --aim
+  int grid = 41;             // points across the disc's diameter
+  int threads = 0;           // 0: one per core
+  ImpactArgs impact;
+  PlannerArgs planner;  // used only without --speed and --aim
+  bool json = false;
+};
+
+class SpinmapCommand {
+ public:
+  // Registers `spinmap` and its flags on `parent`; the flags write into this object, so
+  // it must outlive the parse and stay where it is.
+  explicit SpinmapCommand(CLI::App& parent);
+  SpinmapCommand(const SpinmapCommand&) = delete;
+  SpinmapCommand& operator=(const SpinmapCommand&) = delete;
+
+  bool selected() const;
+
+  // Runs the parsed command; returns an ExitCode: 0 when the picture was written, 2 for
+  // bad input.
+  int run(std::ostream& out, std::ostream& err) const;
+
+ private:
+  bool given(const char* flag) const;
+
+  CLI::App* command_ = nullptr;
+  SpinmapArgs args_;
+};
+
+}  // namespace cueplan::cli

@@ -1,0 +1,428 @@
+// Tests of `cueplan solve` and `cueplan spinmap`, run as separate processes the way a
+// user runs them: what they print and draw, their exit codes, that the shots they
+// report are the simulator's, and that a seed fixes the answer. Every run uses the
+// exact impact method and a small budget, so nothing waits for an impact table.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/shot.hpp"
+#include "cueplan/problems/problem.hpp"
+
+#ifndef CUEPLAN_BINARY
+#error "CUEPLAN_BINARY must name the cueplan executable"
+#endif
+#ifndef CUEPLAN_PROBLEMS_DIR
+#error "CUEPLAN_PROBLEMS_DIR must name the directory of the shipped problem files"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace phys = cueplan::physics;
+namespace prob = cueplan::problems;
+using nlohmann::json;
+
+// A scratch directory for this test program, removed at exit.
+class ScratchDir {
+ public:
+  ScratchDir()
+      : path_(fs::temp_directory_path() / ("cueplan_solve_test_" + std::to_string(::getpid()))) {
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+const fs::path& scratch() {
+  static const ScratchDir dir;  // one per test program; never written after creation
+  return dir.path();
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string problem_path(const std::string& stem) {
+  return std::string(CUEPLAN_PROBLEMS_DIR) + "/" + stem + ".yaml";
+}
+
+struct ProcessResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `cueplan <args>` through the shell (args are shell words) and collects its exit
+// code, stdout and stderr; `tag` keeps the output files of several runs in one test apart.
+ProcessResult cueplan(const std::string& args, const std::string& tag = "") {
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string stem = std::string(test->test_suite_name()) + "." + test->name() + tag;
+  std::replace_if(
+      stem.begin(), stem.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); },
+      '_');
+  const fs::path out = scratch() / (stem + ".out");
+  const fs::path err = scratch() / (stem + ".err");
+  const std::string command = std::string("'") + CUEPLAN_BINARY + "' " + args + " >'" +
+                              out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  ProcessResult run;
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  run.out = read_text(out);
+  run.err = read_text(err);
+  return run;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+size_t count_of(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+prob::Problem shipped(const std::string& stem) {
+  const prob::LoadResult loaded = prob::load_problem(problem_path(stem));
+  EXPECT_TRUE(loaded.ok()) << loaded.error;
+  return loaded.ok() ? *loaded.problem : prob::Problem{};
+}
+
+// A quick, reproducible search: exact impacts, a small budget, a fixed seed.
+constexpr const char* kQuick =
+    "--method exact --max-evaluations 1500 --samples 50 --alternatives 3 --seed 11";
+
+std::string solve_command(const std::string& stem, const std::string& extra = {}) {
+  return "solve '" + problem_path(stem) + "' " + kQuick + (extra.empty() ? "" : " " + extra);
+}
+
+json parsed(const ProcessResult& run) {
+  try {
+    return json::parse(run.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not JSON (" << e.what() << "):\n" << run.out << run.err;
+    return json::object();
+  }
+}
+
+// ---------------------------------------------------------------------------
+// solve
+
+TEST(Solve, TextGivesTheShotInPlayersTermsWithUnits) {
+  const ProcessResult run = cueplan(solve_command("one_rail_position"));
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_EQ(run.err, "");
+  for (const char* needle : {"one-rail position",
+                             "status          solved",
+                             "shot            V = ",
+                             " m/s at aim ",
+                             " deg, k_T = ",
+                             ", k_S = ",
+                             "stroke          ",
+                             " tip",
+                             "tip offset      ",
+                             " R ",
+                             "of the ball radius",
+                             "landing         x = ",
+                             " m, y = ",
+                             "miss distance   ",
+                             " mm",
+                             "inside the target zone",
+                             "success         ",
+                             " %",
+                             "route           1 cushion: ",
+                             "family          ",
+                             "constraints     all met",
+                             "    speed         ok",
+                             "    spin          ok",
+                             "    aim           ok",
+                             "    cushions      ok",
+                             "    pocket        ok",
+                             "    obstacle      ok",
+                             "    rigid limit   ok",
+                             "evaluations     ",
+                             " shot simulations",
+                             "time            ",
+                             "alternatives    "})
+    EXPECT_NE(run.out.find(needle), std::string::npos) << "missing '" << needle << "' in\n"
+                                                       << run.out;
+  // The route names cushions as simulate does.
+  const std::string route = run.out.substr(run.out.find("route "));
+  EXPECT_TRUE(
+      route.find("y = 0") != std::string::npos || route.find("x = 3.569") != std::string::npos ||
+      route.find("y = 1.778") != std::string::npos || route.find("x = 0") != std::string::npos)
+      << route;
+}
+
+TEST(Solve, JsonHasEveryFieldAndTheShotsAreTheSimulators) {
+  const ProcessResult run = cueplan(solve_command("one_rail_position", "--json"));
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const json j = parsed(run);
+  for (const char* key : {"status", "message", "shot", "final_position", "miss_distance",
+                          "success_probability", "evaluations", "time_s", "alternatives", "route",
+                          "family", "constraints", "stroke", "tip_offset"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j.value("status", ""), "solved");
+  EXPECT_GT(j.value("evaluations", 0), 0);
+  EXPECT_GE(j.value("time_s", -1.0), 0.0);
+  ASSERT_TRUE(j["alternatives"].is_array());
+
+  const prob::Problem problem = shipped("one_rail_position");
+  std::vector<json> shots = {j};
+  for (const json& a : j["alternatives"]) shots.push_back(a);
+  for (const json& s : shots) {
+    for (const char* key : {"speed", "aim_deg", "topspin_k", "sidespin_k"})
+      ASSERT_TRUE(s["shot"].contains(key)) << key;
+    for (const char* key : {"final_position", "miss_distance", "success_probability"})
+      EXPECT_TRUE(s.contains(key)) << key;
+    const double p = s["success_probability"].get<double>();
+    EXPECT_GE(p, 0.0);
+    EXPECT_LE(p, 1.0);
+    // An independent simulation of the reported stroke stops where the report says.
+    const phys::Shot shot{s["shot"]["speed"].get<double>(), s["shot"]["aim_deg"].get<double>(),
+                          s["shot"]["topspin_k"].get<double>(),
+                          s["shot"]["sidespin_k"].get<double>()};
+    const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, shot);
+    EXPECT_NEAR(r.final_position.x, s["final_position"][0].get<double>(), 1e-9);
+    EXPECT_NEAR(r.final_position.y, s["final_position"][1].get<double>(), 1e-9);
+    if (r.status == phys::ShotStatus::rest) {
+      EXPECT_NEAR(prob::miss_distance(problem, r), s["miss_distance"].get<double>(), 1e-9);
+    }
+  }
+  // Solved: the best stroke lands within the tolerance and within the limits.
+  EXPECT_LE(j["miss_distance"].get<double>(), problem.tolerance);
+  const phys::Shot best{j["shot"]["speed"].get<double>(), j["shot"]["aim_deg"].get<double>(),
+                        j["shot"]["topspin_k"].get<double>(),
+                        j["shot"]["sidespin_k"].get<double>()};
+  EXPECT_EQ(prob::check_shot(problem.limits, best), "");
+}
+
+TEST(Solve, SameSeedGivesTheSameJson) {
+  // Everything but the wall-clock time; with the evaluation budget ending the search,
+  // the thread count does not matter either.
+  const auto without_time = [](json j) {
+    j.erase("time_s");
+    return j.dump();
+  };
+  const ProcessResult a = cueplan(solve_command("two_rail_position", "--json --threads 1"), "a");
+  const ProcessResult b = cueplan(solve_command("two_rail_position", "--json --threads 1"), "b");
+  const ProcessResult c = cueplan(solve_command("two_rail_position", "--json --threads 2"), "c");
+  ASSERT_NE(a.exit_code, 2) << a.err;
+  EXPECT_EQ(without_time(parsed(a)), without_time(parsed(b)));
+  EXPECT_EQ(without_time(parsed(a)), without_time(parsed(c)));
+}
+
+TEST(Solve, SvgDrawsTheBestPathAndTheAlternativesDimmed) {
+  const fs::path svg = scratch() / "plan.svg";
+  const ProcessResult run =
+      cueplan(solve_command("one_rail_position", "--json --svg '" + svg.string() + "'"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = parsed(run);
+  const std::string text = read_text(svg);
+  ASSERT_EQ(text.rfind("<?xml", 0), 0u) << "no SVG written";
+  EXPECT_NE(text.find("</svg>"), std::string::npos);
+  EXPECT_NE(text.find("class=\"target-zone\""), std::string::npos);
+  EXPECT_NE(text.find("class=\"cue-ball\""), std::string::npos);
+  EXPECT_GE(count_of(text, "class=\"rolling\"") + count_of(text, "class=\"sliding\""), 1u);
+  EXPECT_NE(text.find("m/s"), std::string::npos) << "the title gives the stroke";
+  const size_t alternatives = j["alternatives"].size();
+  if (alternatives > 0) {
+    EXPECT_GE(count_of(text, "stroke-opacity=\"0.6\""), alternatives) << "faint paths";
+    EXPECT_NE(text.find("alternative stroke"), std::string::npos) << "in the legend";
+  }
+  EXPECT_EQ(j.value("svg", ""), svg.string());
+}
+
+TEST(Solve, UnreachableTargetStillReportsAndExitsOne) {
+  // The cue ball can barely move: the far target is out of reach.
+  const fs::path file = scratch() / "out_of_reach.yaml";
+  write_text(file,
+             "name: out of reach\n"
+             "cue_ball: [0.5, 0.5]\n"
+             "target: [3.0, 1.5]\n"
+             "limits:\n"
+             "  speed: [0.2, 0.25]\n"
+             "  cushions: [0, 3]\n");
+  const ProcessResult run = cueplan("solve '" + file.string() + "' " + kQuick);
+  EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
+  EXPECT_NE(run.out.find("status"), std::string::npos);
+  EXPECT_TRUE(run.out.find("unreachable") != std::string::npos ||
+              run.out.find("budget_exhausted") != std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("miss distance"), std::string::npos) << "the nearest stroke is shown";
+}
+
+struct BadInput {
+  const char* name;
+  const char* args;  // after the command; {one_rail} stands for the problem file
+  const char* what;  // the thing the one-line message must name
+};
+
+// gtest prints a parameter with PrintTo: the case name instead of its bytes.
+void PrintTo(const BadInput& input, std::ostream* os) { *os << input.name; }
+
+std::string expand(const std::string& args) {
+  const std::string key = "{one_rail}";
+  const size_t at = args.find(key);
+  if (at == std::string::npos) return args;
+  return args.substr(0, at) + "'" + problem_path("one_rail_position") + "'" +
+         args.substr(at + key.size());
+}
+
+class SolveBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(SolveBadInput, ExitsTwoWithOneLineNamingIt) {
+  const ProcessResult run = cueplan(expand(GetParam().args));
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.out, "");
+  const std::vector<std::string> lines = lines_of(run.err);
+  ASSERT_EQ(lines.size(), 1u) << run.err;
+  EXPECT_EQ(lines[0].rfind("cueplan", 0), 0u) << lines[0];
+  EXPECT_NE(lines[0].find(GetParam().what), std::string::npos) << lines[0];
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, SolveBadInput,
+    ::testing::Values(
+        BadInput{"UnknownGlobal", "solve {one_rail} --method exact --global simplex", "--global"},
+        BadInput{"UnknownLocal", "solve {one_rail} --method exact --local newton", "--local"},
+        BadInput{"NegativeNoise", "solve {one_rail} --method exact --noise -1", "--noise"},
+        BadInput{"ZeroEvaluations", "solve {one_rail} --method exact --max-evaluations 0",
+                 "--max-evaluations"},
+        BadInput{"ZeroTime", "solve {one_rail} --method exact --max-time 0", "--max-time"},
+        BadInput{"ZeroStarts", "solve {one_rail} --method exact --starts 0", "--starts"},
+        BadInput{"NegativeSamples", "solve {one_rail} --method exact --samples -1", "--samples"},
+        BadInput{"NegativeThreads", "solve {one_rail} --method exact --threads -1", "--threads"},
+        BadInput{"UnknownMethod", "solve {one_rail} --method magic", "--method"},
+        BadInput{"NoProblem", "solve --method exact", "PROBLEM"},
+        BadInput{"MissingProblemFile", "solve /nonexistent/problem.yaml --method exact",
+                 "/nonexistent/problem.yaml"},
+        BadInput{"UnwritableSvg",
+                 "solve {one_rail} --method exact --max-evaluations 200 --svg /nonexistent/d/x.svg",
+                 "--svg"},
+        BadInput{"SpinmapWithoutOut", "spinmap {one_rail} --speed 1 --aim 0", "--out"},
+        BadInput{"SpinmapJpeg", "spinmap {one_rail} --speed 1 --aim 0 --out x.jpg", "--out"},
+        BadInput{"SpinmapSpeedWithoutAim", "spinmap {one_rail} --speed 1 --out x.svg", "--aim"},
+        BadInput{"SpinmapAimWithoutSpeed", "spinmap {one_rail} --aim 0 --out x.svg", "--speed"},
+        BadInput{"SpinmapZeroSpeed", "spinmap {one_rail} --speed 0 --aim 0 --out x.svg", "--speed"},
+        BadInput{"SpinmapTinyGrid", "spinmap {one_rail} --speed 1 --aim 0 --grid 2 --out x.svg",
+                 "--grid"}),
+    [](const ::testing::TestParamInfo<BadInput>& param) { return std::string(param.param.name); });
+
+// ---------------------------------------------------------------------------
+// spinmap
+
+// Grid points inside the disc: (i, j) with (2i - n + 1)^2 + (2j - n + 1)^2 <= (n - 1)^2.
+size_t disc_points(int n) {
+  size_t count = 0;
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      const long a = 2L * i - (n - 1);
+      const long b = 2L * k - (n - 1);
+      if (a * a + b * b <= static_cast<long>(n - 1) * (n - 1)) ++count;
+    }
+  return count;
+}
+
+constexpr const char* kOneRailStroke = "--speed 1.002 --aim -60.36 --method exact";
+
+TEST(Spinmap, SvgHasOneCellPerSpinAndOutlinesTheLandingOnes) {
+  const fs::path svg = scratch() / "map.svg";
+  const ProcessResult run =
+      cueplan("spinmap '" + problem_path("one_rail_position") + "' " + kOneRailStroke +
+              " --grid 17 --json --out '" + svg.string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  EXPECT_EQ(run.err, "") << "no progress bar unless stderr is a terminal";
+  const std::string text = read_text(svg);
+  ASSERT_EQ(text.rfind("<?xml", 0), 0u) << "no SVG written";
+  EXPECT_EQ(count_of(text, "class=\"cell\""), disc_points(17));
+  EXPECT_NE(text.find("class=\"miscue-limit\""), std::string::npos);
+  EXPECT_NE(text.find("class=\"table-panel\""), std::string::npos);
+  EXPECT_EQ(count_of(text, "class=\"dot\""), disc_points(17)) << "one rest position per spin";
+  EXPECT_NE(text.find("mm"), std::string::npos) << "the colour scale has its unit";
+
+  const json j = parsed(run);
+  EXPECT_EQ(j.value("points", 0), static_cast<int>(disc_points(17)));
+  EXPECT_EQ(j.value("stroke_source", ""), "given");
+  EXPECT_EQ(static_cast<int>(j["landing_spins"].size()), j.value("landing", -1));
+  // The recorded solution's topspin (k_T 0.8) lies between grid rows; the row at 0.78
+  // still lands, so the outline is there.
+  EXPECT_GT(j.value("landing", 0), 0);
+  EXPECT_NE(text.find("class=\"landing-outline\""), std::string::npos);
+  const prob::Problem problem = shipped("one_rail_position");
+  for (const json& p : j["landing_spins"]) {
+    const phys::ShotResult r = phys::simulate(
+        problem.scene, problem.cue_ball,
+        {1.002, -60.36, p["topspin_k"].get<double>(), p["sidespin_k"].get<double>()});
+    EXPECT_TRUE(prob::reaches_target(problem, r));
+  }
+}
+
+TEST(Spinmap, PngHasAValidSignatureAndSize) {
+  const fs::path png = scratch() / "map.png";
+  const ProcessResult run = cueplan("spinmap '" + problem_path("one_rail_position") + "' " +
+                                    kOneRailStroke + " --grid 9 --out '" + png.string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const std::string bytes = read_text(png);
+  ASSERT_GT(bytes.size(), 33u);
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(bytes.substr(12, 4), "IHDR");
+  const auto be32 = [&](size_t at) {
+    return (static_cast<unsigned char>(bytes[at]) << 24) |
+           (static_cast<unsigned char>(bytes[at + 1]) << 16) |
+           (static_cast<unsigned char>(bytes[at + 2]) << 8) |
+           static_cast<unsigned char>(bytes[at + 3]);
+  };
+  EXPECT_GT(be32(16), 800u) << "width: the disc and the table side by side";
+  EXPECT_GT(be32(20), 400u) << "height";
+  EXPECT_EQ(bytes.substr(bytes.size() - 8, 4), "IEND");
+  EXPECT_NE(run.out.find("picture"), std::string::npos);
+}
+
+TEST(Spinmap, WithoutSpeedAndAimUsesThePlannersStroke) {
+  const fs::path svg = scratch() / "planned.svg";
+  const std::string search = "--method exact --max-evaluations 1500 --samples 20 --seed 11";
+  const ProcessResult map = cueplan("spinmap '" + problem_path("one_rail_position") + "' " +
+                                        search + " --grid 7 --json --out '" + svg.string() + "'",
+                                    "map");
+  ASSERT_EQ(map.exit_code, 0) << map.out << map.err;
+  const ProcessResult plan =
+      cueplan("solve '" + problem_path("one_rail_position") + "' " + search + " --json", "plan");
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  const json m = parsed(map);
+  const json p = parsed(plan);
+  EXPECT_EQ(m.value("stroke_source", ""), "planner");
+  EXPECT_EQ(m["speed"].get<double>(), p["shot"]["speed"].get<double>());
+  EXPECT_EQ(m["aim_deg"].get<double>(), p["shot"]["aim_deg"].get<double>());
+  EXPECT_NE(read_text(svg).find("class=\"planned-spin\""), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,352 @@
+// The planner: finds shots that land, says so truthfully when it cannot, keeps every
+// returned shot within the limits, and gives the same answer for the same seed.
+//
+// Everything here simulates with the exact impact method, so the suite needs no
+// table cache.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/problems/problem.hpp"
+
+namespace cueplan::planner {
+namespace {
+
+problems::Problem shipped(const std::string& file) {
+  const problems::LoadResult r = problems::load_problem(std::string(CUEPLAN_PROBLEMS_DIR) + "/" + file);
+  EXPECT_TRUE(r.ok()) << r.error;
+  return r.ok() ? *r.problem : problems::Problem{};
+}
+
+PlannerOptions exact_options() {
+  PlannerOptions o;
+  o.simulation.record_path = false;
+  return o;
+}
+
+// Every constraint of the problem, checked on a fresh simulation of the shot rather
+// than on what the planner says about it.
+void expect_within_limits(const problems::Problem& p, const PlannedShot& s, bool rigid_enforced,
+                          const std::string& what) {
+  SCOPED_TRACE(what + ": " + s.family);
+  const problems::Limits& l = p.limits;
+  EXPECT_GE(s.shot.speed, l.speed_min * (1 - 1e-12));
+  EXPECT_LE(s.shot.speed, l.speed_max * (1 + 1e-12));
+  EXPECT_LE(std::hypot(s.shot.topspin_k, s.shot.sidespin_k), l.spin_max * (1 + 1e-12));
+  EXPECT_EQ(problems::check_shot(l, s.shot), "");
+  physics::SimulationOptions sim;
+  const physics::ShotResult r = physics::simulate(p.scene, p.cue_ball, s.shot, sim);
+  EXPECT_EQ(r.status, physics::ShotStatus::rest);
+  EXPECT_FALSE(r.pocketed);
+  EXPECT_FALSE(r.hit_obstacle);
+  EXPECT_GE(r.cushion_hits, l.cushions_min);
+  EXPECT_LE(r.cushion_hits, l.cushions_max);
+  EXPECT_LE(problems::miss_distance(p, r), p.tolerance);
+  if (rigid_enforced) {
+    EXPECT_LE(r.max_cushion_normal_speed, 2.5);
+  }
+  EXPECT_TRUE(s.solves);
+  EXPECT_EQ(s.violations, "");
+  EXPECT_EQ(s.cushion_hits, r.cushion_hits);
+  EXPECT_NEAR(s.miss_distance, problems::miss_distance(p, r), 1e-6);
+}
+
+// Problems whose target is where a known stroke lands (0-3 cushions, exactly that
+// many required): the planner must solve at least 99 of 100. They are planned on two
+// threads at once, which also exercises plan()'s thread safety.
+TEST(PlannerTest, SolvesAtLeast99PercentOfProblemsWithAKnownAnswer) {
+  physics::SimulationOptions sim;
+  sim.record_path = false;
+  const std::vector<KnownShotProblem> problems = known_shot_problems(100, 7, sim);
+  ASSERT_EQ(problems.size(), 100u);
+  PlannerOptions o = exact_options();
+  o.robustness_samples = 0;  // probabilities are tested below; this is about finding shots
+  std::vector<PlanResult> results(problems.size());
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t)
+    threads.emplace_back([&, t] {
+      for (size_t i = static_cast<size_t>(t); i < problems.size(); i += 2)
+        results[i] = plan(problems[i].problem, o);
+    });
+  for (std::thread& t : threads) t.join();
+  int solved = 0;
+  for (size_t i = 0; i < problems.size(); ++i) {
+    const PlanResult& r = results[i];
+    if (r.status == PlanStatus::solved) {
+      ++solved;
+      expect_within_limits(problems[i].problem, r.best, false, problems[i].problem.name);
+    } else {
+      ADD_FAILURE() << problems[i].problem.name << " not solved: " << r.message;
+    }
+  }
+  EXPECT_GE(solved, 99);
+}
+
+TEST(PlannerTest, SolvesEveryShippedProblemWithEveryShotWithinItsLimits) {
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(CUEPLAN_PROBLEMS_DIR)) {
+    if (e.path().extension() != ".yaml") continue;
+    ++files;
+    const problems::Problem p = shipped(e.path().filename().string());
+    PlannerOptions o = exact_options();
+    o.robustness_samples = 20;
+    const PlanResult r = plan(p, o);
+    EXPECT_EQ(r.status, PlanStatus::solved) << p.name << ": " << r.message;
+    expect_within_limits(p, r.best, false, p.name);
+    for (const PlannedShot& alt : r.alternatives) expect_within_limits(p, alt, false, p.name);
+  }
+  EXPECT_GE(files, 10);
+}
+
+TEST(PlannerTest, EnforcedRigidLimitHoldsInEveryReturnedShot) {
+  problems::Problem p = shipped("three_rail_position.yaml");
+  PlannerOptions o = exact_options();
+  o.enforce_rigid_limit = true;
+  o.robustness_samples = 0;
+  const PlanResult r = plan(p, o);
+  ASSERT_EQ(r.status, PlanStatus::solved) << r.message;
+  expect_within_limits(p, r.best, true, "best");
+  for (const PlannedShot& alt : r.alternatives) expect_within_limits(p, alt, true, "alternative");
+}
+
+TEST(PlannerTest, ReturnsDistinctFamiliesIncludingFollowAndDraw) {
+  // One cushion off y = 0: played with follow (the file's witness) or with draw.
+  const problems::Problem p = shipped("one_rail_position.yaml");
+  PlannerOptions o = exact_options();
+  o.robustness_samples = 20;
+  const PlanResult r = plan(p, o);
+  ASSERT_EQ(r.status, PlanStatus::solved) << r.message;
+  std::vector<PlannedShot> all{r.best};
+  all.insert(all.end(), r.alternatives.begin(), r.alternatives.end());
+  EXPECT_GE(all.size(), 2u);
+  bool follow = false, draw = false;
+  for (size_t i = 0; i < all.size(); ++i) {
+    follow = follow || all[i].family.find("follow") != std::string::npos;
+    draw = draw || all[i].family.find("draw") != std::string::npos;
+    for (size_t j = 0; j < i; ++j) EXPECT_NE(all[i].family, all[j].family);
+  }
+  EXPECT_TRUE(follow);
+  EXPECT_TRUE(draw);
+}
+
+TEST(PlannerTest, TargetBeyondTheSpeedLimitIsUnreachable) {
+  problems::Problem p = shipped("one_rail_position.yaml");
+  p.limits.speed_max = 0.4;  // rolls about 0.8 m at most; the one-cushion route is ~2.5 m
+  PlannerOptions o = exact_options();
+  const PlanResult r = plan(p, o);
+  EXPECT_EQ(r.status, PlanStatus::unreachable) << r.message;
+  EXPECT_FALSE(r.best.solves);
+  EXPECT_GT(r.best.miss_distance, p.tolerance);
+  EXPECT_NE(r.message.find("Unreachable"), std::string::npos) << r.message;
+  EXPECT_TRUE(r.alternatives.empty());
+}
+
+TEST(PlannerTest, TargetBehindAWallWithNoCushionRouteIsUnreachable) {
+  // Without a cushion the path is a straight line, and the wall stands across it.
+  problems::Problem p = shipped("blocked_direct_route.yaml");
+  p.limits.cushions_min = p.limits.cushions_max = 0;
+  PlannerOptions o = exact_options();
+  const PlanResult r = plan(p, o);
+  EXPECT_EQ(r.status, PlanStatus::unreachable) << r.message;
+  EXPECT_FALSE(r.best.solves);
+  EXPECT_FALSE(r.message.empty());
+}
+
+TEST(PlannerTest, SmallBudgetIsReportedAsExhaustedNotAsSuccess) {
+  problems::Problem p = shipped("three_rail_position.yaml");
+  PlannerOptions o = exact_options();
+  o.max_evaluations = 10;
+  const PlanResult r = plan(p, o);
+  EXPECT_NE(r.status, PlanStatus::solved);
+  if (r.status != PlanStatus::solved) {
+    EXPECT_EQ(r.status, PlanStatus::budget_exhausted) << r.message;
+    EXPECT_NE(r.message.find("budget"), std::string::npos) << r.message;
+  }
+}
+
+// Searching with an impact table, the planner reports (and if need be re-polishes)
+// every returned shot with the exact method. A deliberately coarse table (a few
+// nodes, loose tolerance) makes the table's answers differ from the exact ones.
+TEST(PlannerTest, SearchWithATableReportsExactOutcomes) {
+  const problems::Problem p = shipped("two_rail_position.yaml");
+  physics::ImpactTableOptions coarse;
+  coarse.alpha_nodes = 7;
+  coarse.topspin_nodes = 9;
+  coarse.sidespin_nodes = 7;
+  coarse.roll_alpha_nodes = 7;
+  coarse.roll_sidespin_nodes = 7;
+  coarse.cell_tolerance = 1e-1;
+  const physics::ImpactTable table = physics::ImpactTable::build(p.scene.ball_and_cushion, coarse);
+  ASSERT_FALSE(table.empty());
+  PlannerOptions o = exact_options();
+  o.simulation.impact_method = physics::ImpactMethod::table;
+  o.simulation.table = &table;
+  o.simulation.impact_accuracy = 1.0;  // accept the coarse table for the search
+  ASSERT_EQ(physics::chosen_impact_method(p.scene, o.simulation), physics::ImpactMethod::table);
+  o.robustness_samples = 20;
+  const PlanResult r = plan(p, o);
+  ASSERT_EQ(r.status, PlanStatus::solved) << r.message;
+  EXPECT_EQ(r.best.impact_method, physics::ImpactMethod::exact);
+  expect_within_limits(p, r.best, false, "best");
+  for (const PlannedShot& alt : r.alternatives) {
+    EXPECT_EQ(alt.impact_method, physics::ImpactMethod::exact);
+    expect_within_limits(p, alt, false, "alternative");
+  }
+}
+
+void expect_identical(const PlanResult& a, const PlanResult& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.message, b.message);
+  EXPECT_EQ(a.evaluations, b.evaluations);
+  ASSERT_EQ(a.alternatives.size(), b.alternatives.size());
+  std::vector<const PlannedShot*> sa{&a.best}, sb{&b.best};
+  for (size_t i = 0; i < a.alternatives.size(); ++i) {
+    sa.push_back(&a.alternatives[i]);
+    sb.push_back(&b.alternatives[i]);
+  }
+  for (size_t i = 0; i < sa.size(); ++i) {
+    EXPECT_EQ(sa[i]->shot.speed, sb[i]->shot.speed);
+    EXPECT_EQ(sa[i]->shot.aim_deg, sb[i]->shot.aim_deg);
+    EXPECT_EQ(sa[i]->shot.topspin_k, sb[i]->shot.topspin_k);
+    EXPECT_EQ(sa[i]->shot.sidespin_k, sb[i]->shot.sidespin_k);
+    EXPECT_EQ(sa[i]->success_probability, sb[i]->success_probability);
+    EXPECT_EQ(sa[i]->family, sb[i]->family);
+  }
+}
+
+TEST(PlannerTest, SameSeedGivesTheSameAnswer) {
+  const problems::Problem p = shipped("two_rail_position.yaml");
+  PlannerOptions o = exact_options();
+  o.robustness_samples = 50;
+  expect_identical(plan(p, o), plan(p, o));
+}
+
+TEST(PlannerTest, ThreadCountDoesNotChangeTheAnswer) {
+  const problems::Problem p = shipped("two_rail_position.yaml");
+  PlannerOptions o = exact_options();
+  o.robustness_samples = 50;
+  const PlanResult one = plan(p, o);
+  o.threads = 2;
+  expect_identical(one, plan(p, o));
+}
+
+TEST(PlannerTest, RobustModeDoesNotLowerTheSuccessProbability) {
+  const problems::Problem p = shipped("paper_figure8_rolling.yaml");
+  PlannerOptions o = exact_options();
+  o.robustness_samples = 100;
+  const PlanResult nominal = plan(p, o);
+  ASSERT_EQ(nominal.status, PlanStatus::solved) << nominal.message;
+  o.robust = true;
+  o.robust_max_evaluations = 6000;
+  const PlanResult robust = plan(p, o);
+  ASSERT_EQ(robust.status, PlanStatus::solved) << robust.message;
+  EXPECT_GE(robust.best.success_probability, nominal.best.success_probability);
+  expect_within_limits(p, robust.best, false, "robust best");
+  EXPECT_EQ(robust.best.success_probability,
+            success_probability(p, robust.best.shot, o.noise, o.robustness_samples, o.seed,
+                                o.simulation));
+}
+
+// The witness of paper_figure8_rolling.yaml: natural roll at 0.8 m/s, aim -45 deg.
+const physics::Shot kFigure8Witness{0.8, -45.0, 1.0, 0.0};
+
+TEST(SuccessProbabilityTest, IsOneWithoutNoiseForAShotThatLands) {
+  const problems::Problem p = shipped("paper_figure8_rolling.yaml");
+  NoiseModel none;
+  none.scale = 0.0;
+  EXPECT_EQ(success_probability(p, kFigure8Witness, none, 50, 1, {}), 1.0);
+  const physics::Shot off{0.6, -45.0, 1.0, 0.0};  // stops far short
+  EXPECT_EQ(success_probability(p, off, none, 50, 1, {}), 0.0);
+}
+
+TEST(SuccessProbabilityTest, FallsAsTheNoiseGrows) {
+  const problems::Problem p = shipped("paper_figure8_rolling.yaml");
+  double previous = 1.0;
+  for (double scale : {0.0, 0.5, 2.0, 8.0}) {
+    NoiseModel noise;
+    noise.scale = scale;
+    const double prob = success_probability(p, kFigure8Witness, noise, 200, 3, {});
+    SCOPED_TRACE(scale);
+    EXPECT_LE(prob, previous + 0.03);  // same draws, scaled: falls up to sampling wobble
+    previous = prob;
+  }
+  NoiseModel huge;
+  huge.scale = 8.0;
+  EXPECT_LT(success_probability(p, kFigure8Witness, huge, 200, 3, {}), 0.5);
+}
+
+TEST(SuccessProbabilityTest, IsDeterministicForASeed) {
+  const problems::Problem p = shipped("paper_figure8_rolling.yaml");
+  const NoiseModel noise;
+  const double a = success_probability(p, kFigure8Witness, noise, 100, 11, {});
+  EXPECT_EQ(a, success_probability(p, kFigure8Witness, noise, 100, 11, {}));
+  EXPECT_GT(a, 0.0);
+  EXPECT_LT(a, 1.0);
+}
+
+TEST(EvaluateTest, DescribesTheOneRailWitness) {
+  const problems::Problem p = shipped("one_rail_position.yaml");
+  const PlannedShot s = evaluate(p, {1.002, -60.36, 0.8, 0.0}, {});
+  EXPECT_EQ(s.outcome, physics::ShotStatus::rest);
+  EXPECT_TRUE(s.solves);
+  EXPECT_TRUE(s.within_limits);
+  EXPECT_EQ(s.route, std::vector<int>{0});
+  EXPECT_EQ(s.family, "1 cushion (y = 0), follow, no side");
+  EXPECT_LT(s.miss_distance, 0.002);
+  EXPECT_EQ(s.success_probability, 0.0);
+}
+
+TEST(EvaluateTest, ReportsABrokenLimit) {
+  const problems::Problem p = shipped("one_rail_position.yaml");
+  const PlannedShot s = evaluate(p, {5.0, -60.36, 0.8, 0.0}, {});  // faster than 4.5 m/s
+  EXPECT_FALSE(s.within_limits);
+  EXPECT_FALSE(s.solves);
+  EXPECT_NE(s.violations.find("speed"), std::string::npos) << s.violations;
+}
+
+TEST(PlannerOptionsTest, BadOptionsAreInvalidInputNamingTheField) {
+  const problems::Problem p = shipped("one_rail_position.yaml");
+  struct Case {
+    const char* field;
+    void (*spoil)(PlannerOptions*);
+  };
+  const Case cases[] = {
+      {"max_evaluations", [](PlannerOptions* o) { o->max_evaluations = 0; }},
+      {"max_time_s", [](PlannerOptions* o) { o->max_time_s = -1.0; }},
+      {"local_starts", [](PlannerOptions* o) { o->local_starts = 0; }},
+      {"global_share", [](PlannerOptions* o) { o->global_share = 1.5; }},
+      {"threads", [](PlannerOptions* o) { o->threads = 0; }},
+      {"noise.speed", [](PlannerOptions* o) { o->noise.speed = -0.1; }},
+      {"noise.scale", [](PlannerOptions* o) { o->noise.scale = std::nan(""); }},
+      {"robustness_samples", [](PlannerOptions* o) { o->robustness_samples = -1; }},
+      {"max_alternatives", [](PlannerOptions* o) { o->max_alternatives = -1; }},
+      {"simulation.max_events", [](PlannerOptions* o) { o->simulation.max_events = 0; }},
+  };
+  EXPECT_EQ(PlannerOptions{}.validate(), "");
+  for (const Case& c : cases) {
+    PlannerOptions o;
+    c.spoil(&o);
+    EXPECT_NE(o.validate().find(c.field), std::string::npos) << c.field << ": " << o.validate();
+    const PlanResult r = plan(p, o);
+    EXPECT_EQ(r.status, PlanStatus::invalid_input) << c.field;
+    EXPECT_NE(r.message.find(c.field), std::string::npos) << r.message;
+    EXPECT_EQ(r.evaluations, 0);
+  }
+}
+
+TEST(PlannerOptionsTest, BadProblemIsInvalidInputNamingTheField) {
+  problems::Problem p = shipped("one_rail_position.yaml");
+  p.tolerance = 0.0;
+  const PlanResult r = plan(p, PlannerOptions{});
+  EXPECT_EQ(r.status, PlanStatus::invalid_input);
+  EXPECT_NE(r.message.find("tolerance"), std::string::npos) << r.message;
+}
+
+}  // namespace
+}  // namespace cueplan::planner
