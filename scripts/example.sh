@@ -7,12 +7,9 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cueplan="${CUEPLAN_BUILD_DIR:-$root/build}/apps/cueplan/cueplan"
 
 echo
+echo "\$ cueplan solve problems/one_rail_position.yaml --svg build/plan.svg"
+echo "(the first run builds the impact table the search uses, about 30 s, and caches it)"
+"$cueplan" solve "$root/problems/one_rail_position.yaml" --svg "${CUEPLAN_BUILD_DIR:-$root/build}/plan.svg"
+echo
 echo "\$ cueplan rebound --speed 1 --angle 45 --topspin-k 1 --sidespin-k 0"
 "$cueplan" rebound --speed 1 --angle 45 --topspin-k 1 --sidespin-k 0
-echo
-echo "\$ cueplan rebound --batch problems/rebound_examples.csv --threads 2"
-"$cueplan" rebound --batch "$root/problems/rebound_examples.csv" --threads 2
-echo
-echo "\$ cueplan simulate problems/one_rail_position.yaml --speed 1.002 --aim -60.36 --topspin-k 0.8 --svg build/one_rail.svg"
-"$cueplan" simulate "$root/problems/one_rail_position.yaml" --speed 1.002 --aim -60.36 \
-  --topspin-k 0.8 --svg "${CUEPLAN_BUILD_DIR:-$root/build}/one_rail.svg"
