@@ -9,28 +9,14 @@
 #pragma once
 
 #include <iosfwd>
-#include <string>
-#include <vector>
 
+#include "batch_csv.hpp"
 #include "cueplan/physics/cushion_impact.hpp"
 
 namespace cueplan::cli {
 
+// The header an input file starts with (read it with read_batch_csv).
 inline constexpr const char* kBatchInputHeader = "speed,angle_deg,topspin_k,sidespin_k";
-
-// One line of the input file, as read.
-struct BatchRow {
-  int line = 0;                     // 1-based line number in the file
-  std::vector<std::string> fields;  // the cells as written
-};
-
-// The input rows of a batch file, or why the whole file cannot be used.
-struct BatchInput {
-  std::vector<BatchRow> rows;
-  std::string error;  // empty when the file was read and its header is right
-};
-
-BatchInput read_batch(const std::string& path);
 
 // Resolves every row (from `threads` threads, 0: one per core) and writes the output
 // CSV, header included, to `out`.

@@ -336,7 +336,7 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
   BatchInput batch_input;
   Incidence in;
   if (batch) {
-    batch_input = read_batch(args_.batch_file);
+    batch_input = read_batch_csv(args_.batch_file, kBatchInputHeader);
     if (!batch_input.error.empty()) return usage(batch_input.error);
   } else if (std::string why = read_incidence(params, &in); !why.empty()) {
     return usage(why);

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <ostream>
 
@@ -17,26 +16,13 @@ namespace phys = cueplan::physics;
 constexpr size_t kInputColumns = 4;
 constexpr size_t kResultColumns = 8;  // final_x .. reaches_target
 
-std::string trimmed(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return {};
-  const auto last = text.find_last_not_of(" \t\r");
-  return text.substr(first, last - first + 1);
-}
-
 std::string describe(const char* name, const char* rule, double value) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%s %s, got %.10g", name, rule, value);
   return buf;
 }
 
-struct RowOutcome {
-  std::string status;
-  std::string message;
-  std::vector<std::string> results;  // kResultColumns cells, empty on failure
-};
-
-RowOutcome failed(std::string status, std::string message) {
+BatchOutcome failed(std::string status, std::string message) {
   return {std::move(status), std::move(message), std::vector<std::string>(kResultColumns)};
 }
 
@@ -61,8 +47,8 @@ std::string row_message(const problems::Problem& problem, const phys::Shot& shot
   return message;
 }
 
-RowOutcome simulate_row(const ShotBatchRow& row, const problems::Problem& problem,
-                        const phys::SimulationOptions& options) {
+BatchOutcome simulate_row(const BatchRow& row, const problems::Problem& problem,
+                          const phys::SimulationOptions& options) {
   const std::string where = "line " + std::to_string(row.line) + ": ";
   if (row.fields.size() != kInputColumns)
     return failed("parse_error",
@@ -85,7 +71,7 @@ RowOutcome simulate_row(const ShotBatchRow& row, const problems::Problem& proble
   const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, shot, options);
   if (r.status == phys::ShotStatus::invalid_input)
     return failed("invalid_input", where + r.message);
-  RowOutcome outcome{phys::to_string(r.status), row_message(problem, shot, r), {}};
+  BatchOutcome outcome{phys::to_string(r.status), row_message(problem, shot, r), {}};
   if (!outcome.message.empty()) outcome.message = where + outcome.message;
   outcome.results = {format_number(r.final_position.x),
                      format_number(r.final_position.y),
@@ -112,64 +98,16 @@ std::string check_shot_inputs(const phys::Shot& shot, const ShotNames& names) {
   return {};
 }
 
-ShotBatchInput read_shot_batch(const std::string& path) {
-  ShotBatchInput input;
-  std::ifstream in(path);
-  if (!in) {
-    input.error = "--batch: cannot open " + path;
-    return input;
-  }
-  std::string line;
-  int line_number = 0;
-  bool header_seen = false;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (trimmed(line).empty()) continue;
-    if (!header_seen) {
-      std::string header;
-      for (const std::string& field : split_csv_line(line)) {
-        if (!header.empty()) header += ',';
-        header += trimmed(field);
-      }
-      if (header != kShotBatchHeader) {
-        input.error = "--batch: " + path + " must start with the header '" + kShotBatchHeader +
-                      "', got '" + line + "'";
-        return input;
-      }
-      header_seen = true;
-      continue;
-    }
-    input.rows.push_back({line_number, split_csv_line(line)});
-  }
-  if (in.bad())
-    input.error = "--batch: error while reading " + path;
-  else if (!header_seen)
-    input.error = "--batch: " + path + " is empty; it needs the header '" +
-                  std::string(kShotBatchHeader) + "'";
-  return input;
-}
-
-void write_shot_batch(const ShotBatchInput& input, const problems::Problem& problem,
+void write_shot_batch(const BatchInput& input, const problems::Problem& problem,
                       const phys::SimulationOptions& options, int threads, std::ostream& out) {
   phys::SimulationOptions row_options = options;
   row_options.record_path = false;  // only the outcome is written
-  std::vector<RowOutcome> outcomes(input.rows.size());
+  std::vector<BatchOutcome> outcomes(input.rows.size());
   parallel_for(input.rows.size(), thread_count(threads, input.rows.size()),
                [&](size_t i) { outcomes[i] = simulate_row(input.rows[i], problem, row_options); });
 
   out << kShotBatchHeader << ',' << kShotBatchResultHeader << '\n';
-  for (size_t i = 0; i < input.rows.size(); ++i) {
-    std::vector<std::string> cells;
-    for (size_t c = 0; c < kInputColumns; ++c)
-      cells.push_back(c < input.rows[i].fields.size() ? trimmed(input.rows[i].fields[c]) : "");
-    for (std::string& cell : outcomes[i].results) cells.push_back(std::move(cell));
-    cells.push_back(outcomes[i].status);
-    // The message is always quoted: it is free text.
-    std::string line = csv_line(cells);
-    line.pop_back();
-    out << line << ',' << csv_quoted(outcomes[i].message) << '\n';
-  }
+  write_batch_rows(input, kInputColumns, std::move(outcomes), out);
 }
 
 }  // namespace cueplan::cli

@@ -13,13 +13,14 @@
 
 #include <iosfwd>
 #include <string>
-#include <vector>
 
+#include "batch_csv.hpp"
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/problems/problem.hpp"
 
 namespace cueplan::cli {
 
+// The header an input file starts with (read it with read_batch_csv).
 inline constexpr const char* kShotBatchHeader = "speed,aim_deg,topspin_k,sidespin_k";
 inline constexpr const char* kShotBatchResultHeader =
     "final_x,final_y,cushion_hits,pocketed,hit_obstacle,duration,miss_distance,reaches_target,"
@@ -39,23 +40,9 @@ inline constexpr ShotNames kShotColumnNames = {"speed", "aim_deg", "topspin_k", 
 // line naming the input.
 std::string check_shot_inputs(const physics::Shot& shot, const ShotNames& names);
 
-// One line of the input file, as read.
-struct ShotBatchRow {
-  int line = 0;                     // 1-based line number in the file
-  std::vector<std::string> fields;  // the cells as written
-};
-
-// The input rows of a batch file, or why the whole file cannot be used.
-struct ShotBatchInput {
-  std::vector<ShotBatchRow> rows;
-  std::string error;  // empty when the file was read and its header is right
-};
-
-ShotBatchInput read_shot_batch(const std::string& path);
-
 // Simulates every row on the problem's scene (from `threads` threads, 0: one per core)
 // and writes the output CSV, header included, to `out`.
-void write_shot_batch(const ShotBatchInput& input, const problems::Problem& problem,
+void write_shot_batch(const BatchInput& input, const problems::Problem& problem,
                       const physics::SimulationOptions& options, int threads, std::ostream& out);
 
 }  // namespace cueplan::cli

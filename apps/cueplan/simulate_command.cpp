@@ -466,10 +466,10 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
 
   // The shot(s) and the problem: whole-input errors come before any table is built.
   const bool batch = given("--batch");
-  ShotBatchInput batch_input;
+  BatchInput batch_input;
   phys::Shot shot;
   if (batch) {
-    batch_input = read_shot_batch(args_.batch_file);
+    batch_input = read_batch_csv(args_.batch_file, kShotBatchHeader);
     if (!batch_input.error.empty()) return usage(batch_input.error);
   } else if (std::string why = read_shot(&shot); !why.empty()) {
     return usage(why);

@@ -1,131 +1,30 @@
 // Tests of the `cueplan` command line, run as a separate process the way a user runs
 // it: what it prints, its exit codes, and that its numbers are the library's.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
 #include "cueplan/physics/cushion_impact.hpp"
 
-#ifndef CUEPLAN_BINARY
-#error "CUEPLAN_BINARY must name the cueplan executable"
-#endif
+// The test files share their helpers (cli_test_support.hpp) by living in its namespace.
+namespace cli_test {
+
+const char* const kScratchName = "cueplan_cli_test_";
 
 namespace {
 
 namespace fs = std::filesystem;
 namespace phys = cueplan::physics;
 using nlohmann::json;
-
-// A scratch directory for this test program, removed at exit.
-class ScratchDir {
- public:
-  ScratchDir()
-      : path_(fs::temp_directory_path() / ("cueplan_cli_test_" + std::to_string(::getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-const fs::path& scratch() {
-  static const ScratchDir dir;  // one per test program; never written after creation
-  return dir.path();
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
-struct ProcessResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs `cueplan <args>` through the shell (args are shell words) and collects its
-// exit code, stdout and stderr.
-ProcessResult cueplan(const std::string& args) {
-  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string stem = std::string(test->test_suite_name()) + "." + test->name();
-  std::string safe_stem = stem;
-  std::replace_if(
-      safe_stem.begin(), safe_stem.end(),
-      [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-  const fs::path out = scratch() / (safe_stem + ".out");
-  const fs::path err = scratch() / (safe_stem + ".err");
-  const std::string command = std::string("'") + CUEPLAN_BINARY + "' " + args + " >'" +
-                              out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  ProcessResult run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = read_text(out);
-  run.err = read_text(err);
-  return run;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-// Splits a CSV line; quoted fields (the message column) keep their commas.
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"')
-      quoted = !quoted;
-    else if (c == ',' && !quoted)
-      fields.emplace_back();
-    else
-      fields.back() += c;
-  }
-  return fields;
-}
-
-// A CSV text as rows of named cells.
-std::vector<std::map<std::string, std::string>> csv_rows(const std::string& text) {
-  const std::vector<std::string> lines = lines_of(text);
-  std::vector<std::map<std::string, std::string>> rows;
-  if (lines.empty()) return rows;
-  const std::vector<std::string> header = csv_fields(lines[0]);
-  for (size_t i = 1; i < lines.size(); ++i) {
-    const std::vector<std::string> cells = csv_fields(lines[i]);
-    std::map<std::string, std::string> row;
-    for (size_t c = 0; c < header.size() && c < cells.size(); ++c) row[header[c]] = cells[c];
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
 
 phys::ImpactResult library_rebound(const phys::CushionParams& params, double speed,
                                    double angle_deg, double topspin_k, double sidespin_k,
@@ -493,3 +392,4 @@ TEST(Figures, UnwritableDirectoryExitsTwo) {
 }
 
 }  // namespace
+}  // namespace cli_test

@@ -3,29 +3,21 @@
 // report are the simulator's, and that a seed fixes the answer. Every run uses the
 // exact impact method and a small budget, so nothing waits for an impact table.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/problems/problem.hpp"
 
-#ifndef CUEPLAN_BINARY
-#error "CUEPLAN_BINARY must name the cueplan executable"
-#endif
-#ifndef CUEPLAN_PROBLEMS_DIR
-#error "CUEPLAN_PROBLEMS_DIR must name the directory of the shipped problem files"
-#endif
+// The test files share their helpers (cli_test_support.hpp) by living in its namespace.
+namespace cli_test {
+
+const char* const kScratchName = "cueplan_solve_test_";
 
 namespace {
 
@@ -33,88 +25,6 @@ namespace fs = std::filesystem;
 namespace phys = cueplan::physics;
 namespace prob = cueplan::problems;
 using nlohmann::json;
-
-// A scratch directory for this test program, removed at exit.
-class ScratchDir {
- public:
-  ScratchDir()
-      : path_(fs::temp_directory_path() / ("cueplan_solve_test_" + std::to_string(::getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-const fs::path& scratch() {
-  static const ScratchDir dir;  // one per test program; never written after creation
-  return dir.path();
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
-std::string problem_path(const std::string& stem) {
-  return std::string(CUEPLAN_PROBLEMS_DIR) + "/" + stem + ".yaml";
-}
-
-struct ProcessResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-// Runs `cueplan <args>` through the shell (args are shell words) and collects its exit
-// code, stdout and stderr; `tag` keeps the output files of several runs in one test apart.
-ProcessResult cueplan(const std::string& args, const std::string& tag = "") {
-  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string stem = std::string(test->test_suite_name()) + "." + test->name() + tag;
-  std::replace_if(
-      stem.begin(), stem.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); },
-      '_');
-  const fs::path out = scratch() / (stem + ".out");
-  const fs::path err = scratch() / (stem + ".err");
-  const std::string command = std::string("'") + CUEPLAN_BINARY + "' " + args + " >'" +
-                              out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  ProcessResult run;
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = read_text(out);
-  run.err = read_text(err);
-  return run;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-size_t count_of(const std::string& text, const std::string& needle) {
-  size_t n = 0;
-  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
-  return n;
-}
-
-prob::Problem shipped(const std::string& stem) {
-  const prob::LoadResult loaded = prob::load_problem(problem_path(stem));
-  EXPECT_TRUE(loaded.ok()) << loaded.error;
-  return loaded.ok() ? *loaded.problem : prob::Problem{};
-}
 
 // A quick, reproducible search: exact impacts, a small budget, a fixed seed.
 constexpr const char* kQuick =
@@ -426,3 +336,4 @@ TEST(Spinmap, WithoutSpeedAndAimUsesThePlannersStroke) {
 }
 
 }  // namespace
+}  // namespace cli_test
