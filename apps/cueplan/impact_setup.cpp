@@ -11,17 +11,12 @@
 #include "exit_codes.hpp"
 #include "output_file.hpp"
 #include "rebound_inputs.hpp"
+#include "shot_words.hpp"
 
 namespace cueplan::cli {
 namespace {
 
 namespace phys = cueplan::physics;
-
-std::string number(double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
-}
 
 }  // namespace
 

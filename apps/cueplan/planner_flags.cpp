@@ -1,4 +1,5 @@
 #include "planner_flags.hpp"
+#include "shot_words.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -11,12 +12,6 @@ namespace cueplan::cli {
 namespace {
 
 namespace plan = cueplan::planner;
-
-std::string number(double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
-}
 
 // A PlannerOptions message that starts with a field name, with the flag named instead.
 std::string with_flag_name(const std::string& message) {

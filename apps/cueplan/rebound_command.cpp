@@ -11,6 +11,7 @@
 #include "output_file.hpp"
 #include "rebound_batch.hpp"
 #include "rebound_inputs.hpp"
+#include "shot_words.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -18,14 +19,6 @@ namespace {
 namespace phys = cueplan::physics;
 
 constexpr const char* kCommandName = "cueplan rebound";
-
-std::string number(double value, const char* unit = nullptr) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  std::string s = buf;
-  if (unit) s += std::string(" ") + unit;
-  return s;
-}
 
 std::string transition_text(const phys::SlipTransition& t) {
   return std::string(phys::to_string(t.contact)) + (t.sticking ? " sticks" : " slips") +

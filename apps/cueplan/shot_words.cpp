@@ -9,12 +9,6 @@ namespace {
 
 namespace phys = cueplan::physics;
 
-std::string number(double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
-}
-
 }  // namespace
 
 std::string cushion_name(const phys::Scene& scene, int cushion) {
@@ -59,6 +53,26 @@ std::string method_text(const phys::SimulationOptions& options, const phys::Scen
       break;
   }
   return "exact (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
+}
+
+std::string number(double value, const char* unit) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  std::string s = buf;
+  if (unit) s += std::string(" ") + unit;
+  return s;
+}
+
+std::string fixed(const char* pattern, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, pattern, value);
+  return buf;
+}
+
+std::string cushions_allowed(const problems::Limits& limits) {
+  return limits.cushions_min == limits.cushions_max
+             ? std::to_string(limits.cushions_min)
+             : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
 }
 
 }  // namespace cueplan::cli

@@ -6,8 +6,19 @@
 #include <vector>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/problems/problem.hpp"
 
 namespace cueplan::cli {
+
+// A number as reports print it (6 significant digits), with its unit when given:
+// "0.847614 m/s".
+std::string number(double value, const char* unit = nullptr);
+
+// One number through a printf pattern, e.g. fixed("%.1f %%", 100 * p).
+std::string fixed(const char* pattern, double value);
+
+// The cushion counts a problem allows: "1" or "1 to 3".
+std::string cushions_allowed(const problems::Limits& limits);
 
 // A cushion by its nose line (ShotEvent::cushion numbers them): "y = 0", "x = 3.569",
 // "y = 1.778", "x = 0".

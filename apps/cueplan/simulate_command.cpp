@@ -23,14 +23,6 @@ namespace prob = cueplan::problems;
 
 constexpr const char* kCommandName = "cueplan simulate";
 
-std::string number(double value, const char* unit = nullptr) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  std::string s = buf;
-  if (unit) s += std::string(" ") + unit;
-  return s;
-}
-
 std::string point(phys::Vec2 p) { return "(" + number(p.x) + ", " + number(p.y) + ") m"; }
 
 double speed_of(const phys::ShotEvent& e) { return std::hypot(e.velocity.x, e.velocity.y); }
@@ -102,12 +94,6 @@ TargetReport target_report(const prob::Problem& problem, const phys::Shot& shot,
   t.reaches = prob::reaches_target(problem, r);
   t.limits = prob::check_shot(problem.limits, shot);
   return t;
-}
-
-std::string cushions_allowed(const prob::Limits& limits) {
-  return limits.cushions_min == limits.cushions_max
-             ? std::to_string(limits.cushions_min)
-             : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
 }
 
 void write_text(std::ostream& out, const prob::Problem& problem, const phys::Shot& shot,

@@ -26,26 +26,6 @@ using nlohmann::ordered_json;
 constexpr const char* kCommandName = "cueplan solve";
 constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue strike")
 
-std::string number(double value, const char* unit = nullptr) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  std::string s = buf;
-  if (unit) s += std::string(" ") + unit;
-  return s;
-}
-
-std::string fixed(const char* pattern, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, pattern, value);
-  return buf;
-}
-
-std::string cushions_allowed(const prob::Limits& limits) {
-  return limits.cushions_min == limits.cushions_max
-             ? std::to_string(limits.cushions_min)
-             : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
-}
-
 // Tip offsets as fractions of R, with their direction in words.
 std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) {
   const plan::TipOffset t = plan::tip_offset(shot);

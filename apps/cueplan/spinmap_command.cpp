@@ -36,26 +36,6 @@ constexpr const char* kCommandName = "cueplan spinmap";
 constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue strike")
 constexpr int kSamplePathsPerSide = 5;     // faint paths: about 5 x 5 spins of the grid
 
-std::string number(double value, const char* unit = nullptr) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  std::string s = buf;
-  if (unit) s += std::string(" ") + unit;
-  return s;
-}
-
-std::string fixed(const char* pattern, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, pattern, value);
-  return buf;
-}
-
-std::string cushions_allowed(const prob::Limits& limits) {
-  return limits.cushions_min == limits.cushions_max
-             ? std::to_string(limits.cushions_min)
-             : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
-}
-
 enum class PictureFormat { svg, png };
 
 std::optional<PictureFormat> format_of(const std::string& file) {
