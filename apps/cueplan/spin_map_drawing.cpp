@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "raster_image.hpp"
+#include "svg_plot.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -375,28 +376,6 @@ std::vector<BarTick> bar_ticks(const Figure& f, const Layout& l, double char_wid
 // ---------------------------------------------------------------------------
 // SVG
 
-std::string escape_xml(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 // A <text> element; `k_{T}` becomes a lowered, smaller T.
 std::string svg_text(double x, double y, std::string_view label, double size,

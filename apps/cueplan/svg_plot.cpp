@@ -6,18 +6,6 @@
 #include <string_view>
 
 namespace cueplan::cli {
-namespace {
-
-// Average advance of a DejaVu Sans glyph, in font sizes: enough to size boxes.
-constexpr double kCharWidth = 0.6;
-constexpr double kSubscriptScale = 0.75;
-constexpr double kTickLength = 5.0;
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
-}
 
 std::string escape_xml(std::string_view text) {
   std::string out;
@@ -32,12 +20,6 @@ std::string escape_xml(std::string_view text) {
   }
   return out;
 }
-
-// A label split into plain and subscript runs ("k_{T}" -> "k", sub "T").
-struct TextRun {
-  std::string text;
-  bool subscript = false;
-};
 
 std::vector<TextRun> text_runs(std::string_view label) {
   std::vector<TextRun> runs;
@@ -55,6 +37,20 @@ std::vector<TextRun> text_runs(std::string_view label) {
   }
   return runs;
 }
+
+namespace {
+
+// Average advance of a DejaVu Sans glyph, in font sizes: enough to size boxes.
+constexpr double kCharWidth = 0.6;
+constexpr double kSubscriptScale = 0.75;
+constexpr double kTickLength = 5.0;
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
 
 size_t code_points(std::string_view text) {
   return static_cast<size_t>(

@@ -8,9 +8,20 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cueplan::cli {
+
+// Text made safe inside SVG/XML markup (&, <, >, ").
+std::string escape_xml(std::string_view text);
+
+// A label split into plain and subscript runs: "k_{T}" -> "k", subscript "T".
+struct TextRun {
+  std::string text;
+  bool subscript = false;
+};
+std::vector<TextRun> text_runs(std::string_view label);
 
 struct PlotSeries {
   std::string label;      // legend entry

@@ -1,4 +1,5 @@
 #include "table_drawing.hpp"
+#include "svg_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,51 +36,7 @@ std::string num(double v) {
   return buf;
 }
 
-std::string escape_xml(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
-// A label split at subscripts written `k_{T}`.
-struct TextRun {
-  std::string text;
-  bool subscript = false;
-};
-
-std::vector<TextRun> text_runs(std::string_view label) {
-  std::vector<TextRun> runs;
-  size_t i = 0;
-  while (i < label.size()) {
-    const size_t open = label.find("_{", i);
-    const size_t close = open == std::string_view::npos ? open : label.find('}', open);
-    if (close == std::string_view::npos) {
-      runs.push_back({std::string(label.substr(i)), false});
-      break;
-    }
-    if (open > i) runs.push_back({std::string(label.substr(i, open - i)), false});
-    runs.push_back({std::string(label.substr(open + 2, close - open - 2)), true});
-    i = close + 1;
-  }
-  return runs;
-}
 
 double text_width(std::string_view label, double font_size) {
   double width = 0.0;
