@@ -392,10 +392,15 @@ ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
       for (int i = 0; i < 4; ++i) {
         const Vec2 n = lines[i].normal;
         // n . p(t) - contact, negative on the table; contact when it rises to zero.
-        const double c[3] = {dot(n, q.a0) - lines[i].contact, dot(n, q.a1), dot(n, q.a2)};
+        double c[3] = {dot(n, q.a0) - lines[i].contact, dot(n, q.a1), dot(n, q.a2)};
         double hit = kNever;
-        if (c[0] >= 0.0 && c[1] > 0.0) {
-          hit = 0.0;  // touching (or rounding past) and still moving in
+        if (c[0] >= 0.0) {
+          // Touching (or rounding past): on the line, so that a ball leaving the cushion
+          // is caught when friction on the cloth brings it back.
+          c[0] = 0.0;
+        }
+        if (c[0] == 0.0 && (c[1] > 0.0 || (c[1] == 0.0 && c[2] > 0.0))) {
+          hit = 0.0;  // touching and moving in, or at rest across it and pressed in
         } else {
           double roots[2];
           const int n_roots = detail::roots_in(c, 2, 0.0, horizon, roots);
@@ -457,6 +462,16 @@ ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
         BallState in;
         in.velocity = {dot(b.v, x_axis), dot(b.v, n), 0.0};
         in.spin = {b.w.x * x_axis.x + b.w.y * x_axis.y, b.w.x * n.x + b.w.y * n.y, b.w.z};
+        if (!(in.velocity.y > 0.0)) {
+          // Friction on the cloth presses the ball into the cushion with no approach
+          // speed left (a run of ever smaller bounces that rounding ended): sliding
+          // along a cushion is not modelled.
+          result.status = ShotStatus::impact_failed;
+          result.message = "cushion " + std::to_string(which) +
+                           ": the ball is pressed against it with no approach speed (sliding "
+                           "along a cushion is not modelled)";
+          break;
+        }
         const ImpactResult r = resolve_impact(params, in, impact);
         if (!usable(r.status)) {
           result.status = ShotStatus::impact_failed;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "support/physics_checks.hpp"
+
 namespace cueplan::physics {
 namespace {
 
@@ -27,16 +29,7 @@ ImpactResult solve(const CushionParams& p, double v0, double alpha, double kt, d
   return resolve_impact(p, incoming_state_k(v0, alpha, kt, ks, p.radius), o);
 }
 
-// Largest difference of two outgoing states, in units of the incoming speed (spins
-// as R w).
-double state_difference(const CushionParams& p, const ImpactResult& a, const ImpactResult& b,
-                        double v0) {
-  const Vec3 dv = a.outgoing.velocity - b.outgoing.velocity;
-  const Vec3 dw = a.outgoing.spin - b.outgoing.spin;
-  double m = std::max({std::abs(dv.x), std::abs(dv.y), p.radius * std::abs(dw.x),
-                       p.radius * std::abs(dw.y), p.radius * std::abs(dw.z)});
-  return m / v0;
-}
+using test::state_difference;
 
 // ---------------------------------------------------------------------------
 // Closed-form head-on impact. At alpha = 90 deg with no sidespin every slip and every

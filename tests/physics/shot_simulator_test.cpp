@@ -8,6 +8,8 @@
 #include <cstring>
 #include <numbers>
 
+#include "support/physics_checks.hpp"
+
 namespace cueplan::physics {
 namespace {
 
@@ -19,12 +21,7 @@ Scene open_table() {
   return s;
 }
 
-double kinetic_energy_of(const Scene& s, Vec2 v, Vec3 w) {
-  BallState b;
-  b.velocity = {v.x, v.y, 0.0};
-  b.spin = w;
-  return kinetic_energy(s.ball_and_cushion, b);
-}
+using test::kinetic_energy_of;
 
 TEST(ShotSimulator, StunShotSlidesThenRollsAtFiveSevenths) {
   const Scene s = open_table();
@@ -203,6 +200,29 @@ TEST(ShotSimulator, BadInputNamesTheField) {
   const ShotResult r = simulate(s, {0.5, 0.5}, {});
   EXPECT_EQ(r.status, ShotStatus::invalid_input);
   EXPECT_NE(r.message.find("overlaps obstacles[0]"), std::string::npos) << r.message;
+}
+
+TEST(ShotSimulator, BallPressedIntoACushionNeverPassesIt) {
+  // A ball touching cushion 1 is struck away from it, slowly and with strong draw and
+  // sidespin: friction on the cloth brings it back, and the bounces shrink until
+  // rounding leaves no approach speed while friction still presses it in. (Found by
+  // tests/stress: the ball used to slide through the cushion line.)
+  Scene s;
+  s.ball_and_cushion.mass = 0.44756117091267494;
+  s.ball_and_cushion.radius = 0.052967668150026403;
+  s.ball_and_cushion.cushion_height = 0.074154735410036962;
+  s.ball_and_cushion.mu_cushion = 0.041673810263415004;
+  s.ball_and_cushion.mu_table = 0.10542796027394329;
+  s.ball_and_cushion.restitution = 0.4375778233307076;
+  s.length = 0.20743495229725895;
+  s.width = 0.28078497030525806;
+  s.obstacles = {{0.048545669736559514, 0.079323252473017053}};
+  const Shot away{0.000854227200685668, -149.29294200792324, -20.0, -15.867214661462407};
+  const ShotResult r = simulate(s, {s.length - s.contact_offset(), 0.1302956509535601}, away);
+  EXPECT_GE(r.cushion_hits, 10);
+  EXPECT_LE(test::audit_path(s, r).max_outside, 1e-12);
+  EXPECT_EQ(r.status, ShotStatus::impact_failed);
+  EXPECT_NE(r.message.find("pressed"), std::string::npos) << r.message;
 }
 
 TEST(ShotSimulator, EventCapEndsWithAClearStatus) {

@@ -108,7 +108,9 @@ enum class ShotStatus {
   hit_obstacle,    // touched an obstacle ball
   invalid_input,   // nothing simulated; message names the field
   event_limit,     // more events than SimulationOptions::max_events
-  impact_failed,   // the impact model could not resolve a cushion contact
+  impact_failed,   // the impact model could not resolve a cushion contact, or friction
+                   // presses the ball into a cushion it touches with no approach speed
+                   // (sliding along a cushion is not modelled)
 };
 const char* to_string(ShotStatus status);
 

@@ -1,0 +1,161 @@
+// Checks on physics results shared by the unit, property and stress tests: how far
+// two impact outcomes differ, whether every number in a result is finite, and how
+// much kinetic energy a shot's path gains anywhere (PHYSICS.md, "Ball on the cloth",
+// rebuilt here from the recorded path rather than taken from the simulator).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+#include "cueplan/physics/cushion_impact.hpp"
+#include "cueplan/physics/shot.hpp"
+
+namespace cueplan::physics::test {
+
+// Largest difference of two outgoing states, in units of the incoming speed v0
+// (spins as R w).
+inline double state_difference(const CushionParams& p, const ImpactResult& a, const ImpactResult& b,
+                               double v0) {
+  const Vec3 dv = a.outgoing.velocity - b.outgoing.velocity;
+  const Vec3 dw = a.outgoing.spin - b.outgoing.spin;
+  const double m = std::max({std::abs(dv.x), std::abs(dv.y), p.radius * std::abs(dw.x),
+                             p.radius * std::abs(dw.y), p.radius * std::abs(dw.z)});
+  return m / v0;
+}
+
+// Every number an impact result reports is finite.
+inline bool all_finite(const ImpactResult& r) {
+  return is_finite(r.outgoing.velocity) && is_finite(r.outgoing.spin) &&
+         std::isfinite(r.rebound_speed) && std::isfinite(r.rebound_angle_deg) &&
+         std::isfinite(r.impulse_compression) && std::isfinite(r.impulse_total) &&
+         std::isfinite(r.work_compression) && std::isfinite(r.work_total);
+}
+
+// Kinetic energy (J) of the ball with planar velocity v and spin w.
+inline double kinetic_energy_of(const Scene& s, Vec2 v, Vec3 w) {
+  BallState b;
+  b.velocity = {v.x, v.y, 0.0};
+  b.spin = w;
+  return kinetic_energy(s.ball_and_cushion, b);
+}
+
+inline bool finite2(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+// Every number a shot result reports is finite.
+inline bool all_finite(const ShotResult& r) {
+  if (!finite2(r.final_position) || !std::isfinite(r.duration) ||
+      !std::isfinite(r.max_cushion_normal_speed))
+    return false;
+  for (const ShotEvent& e : r.events)
+    if (!std::isfinite(e.time) || !finite2(e.position) || !finite2(e.velocity) ||
+        !is_finite(e.spin) || !std::isfinite(e.normal_speed))
+      return false;
+  for (const PathSegment& s : r.path)
+    if (!std::isfinite(s.t0) || !std::isfinite(s.t1) || !finite2(s.p0) || !finite2(s.v0) ||
+        !finite2(s.accel))
+      return false;
+  return true;
+}
+
+// What walking a shot's events and path found.
+struct PathAudit {
+  // Largest relative rise of kinetic energy, (after - before) / before, across a cushion
+  // impact and everywhere else.
+  double max_impact_energy_gain = 0.0;
+  double max_energy_gain = 0.0;
+  double max_gap = 0.0;          // m, largest jump between a segment's end and the next event
+  double max_outside = 0.0;      // m, farthest a centre got past a cushion contact line
+  bool times_ordered = true;     // event and segment times never go back, and meet
+  bool segments_matched = true;  // every segment starts at an event
+  std::string where;             // the event or segment of max_energy_gain
+};
+
+// Walks the events in order, and inside every path segment rebuilds the state at
+// `samples` interior times from the segment's start event with the cloth laws of
+// PHYSICS.md: while sliding dw/dt = (5 / 2R) z x (-a) (a = mu_s g along -u), while
+// rolling w = (-v_y, v_x) / R, and w_z falls at 5 mu_sp g / (2R) toward zero.
+inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4) {
+  PathAudit audit;
+  const double radius = s.radius();
+  const double spin_decel = 2.5 * s.cloth.mu_spin * s.cloth.gravity / radius;
+  const double off = s.contact_offset();
+  auto outside = [&](Vec2 p) {
+    return std::max({off - p.x, p.x - (s.length - off), off - p.y, p.y - (s.width - off), 0.0});
+  };
+  double last = INFINITY;
+  auto visit = [&](double energy, const std::string& where, bool impact) {
+    double gain = 0.0;
+    if (std::isfinite(last) && energy > last) gain = last > 0.0 ? (energy - last) / last : INFINITY;
+    double& worst = impact ? audit.max_impact_energy_gain : audit.max_energy_gain;
+    if (gain > worst) {
+      worst = gain;
+      if (!impact) audit.where = where;
+    }
+    last = energy;
+  };
+  // Each segment starts from the state of the last event logged before it: the first
+  // run of events that matches its start exactly (time, position, velocity). Events
+  // without a segment between them happened at one instant.
+  auto starts = [](const ShotEvent& e, const PathSegment& seg) {
+    return e.time == seg.t0 && e.position.x == seg.p0.x && e.position.y == seg.p0.y &&
+           e.velocity.x == seg.v0.x && e.velocity.y == seg.v0.y;
+  };
+  size_t next_event = 0;
+  auto take_event = [&] {
+    const ShotEvent& e = r.events[next_event];
+    if (next_event > 0 && e.time < r.events[next_event - 1].time) audit.times_ordered = false;
+    audit.max_outside = std::max(audit.max_outside, outside(e.position));
+    visit(kinetic_energy_of(s, e.velocity, e.spin),
+          std::string("event ") + std::to_string(next_event) + " (" + to_string(e.type) + ")",
+          e.type == EventType::cushion);
+    ++next_event;
+  };
+  for (size_t i = 0; i < r.path.size(); ++i) {
+    const PathSegment& seg = r.path[i];
+    if (seg.t1 < seg.t0) audit.times_ordered = false;
+    while (next_event < r.events.size() && !starts(r.events[next_event], seg)) take_event();
+    // (A segment of zero length by rounding starts where the next one does.)
+    while (next_event + 1 < r.events.size() && starts(r.events[next_event + 1], seg) &&
+           !(i + 1 < r.path.size() && starts(r.events[next_event + 1], r.path[i + 1])))
+      take_event();
+    if (next_event == r.events.size()) {
+      audit.segments_matched = false;
+      break;
+    }
+    const ShotEvent& start = r.events[next_event];
+    take_event();
+    const Vec3 w0 = start.spin;
+    for (int k = 1; k <= samples + 1; ++k) {
+      const double dt = (seg.t1 - seg.t0) * k / (samples + 1);
+      const Vec2 v{seg.v0.x + seg.accel.x * dt, seg.v0.y + seg.accel.y * dt};
+      Vec3 w = w0;
+      if (seg.motion == Motion::sliding) {
+        w.x += 2.5 / radius * seg.accel.y * dt;
+        w.y -= 2.5 / radius * seg.accel.x * dt;
+      } else {
+        w.x = -v.y / radius;
+        w.y = v.x / radius;
+      }
+      const double drop = spin_decel * dt;
+      w.z = w0.z > 0.0 ? std::max(0.0, w0.z - drop) : std::min(0.0, w0.z + drop);
+      const Vec2 p = seg.at(seg.t0 + dt);
+      audit.max_outside = std::max(audit.max_outside, outside(p));
+      // The last sample is the segment's end, just before the next event.
+      visit(kinetic_energy_of(s, v, w),
+            "segment " + std::to_string(i) + " at t = " + std::to_string(seg.t0 + dt), false);
+    }
+    // The segment ends where the next event happens.
+    if (next_event < r.events.size()) {
+      const Vec2 end = seg.at(seg.t1);
+      const Vec2 at = r.events[next_event].position;
+      audit.max_gap = std::max(audit.max_gap, std::hypot(end.x - at.x, end.y - at.y));
+      if (r.events[next_event].time != seg.t1) audit.times_ordered = false;
+    }
+  }
+  while (next_event < r.events.size()) take_event();
+  return audit;
+}
+
+}  // namespace cueplan::physics::test
