@@ -2,7 +2,7 @@
 """Error-versus-run-time table and plot from bench_impact's JSON output.
 
     build/bench/bench_impact --benchmark_format=json > impact.json
-    python3 bench/error_vs_time.py impact.json --svg bench/error_vs_time.svg
+    python3 bench/error_vs_time.py impact.json --svg bench/error_vs_time.svg [--cpu]
 
 Prints a Markdown table (one row per method configuration: time per impact,
 ratio to the paper scheme at N = 5000, errors against the converged reference)
@@ -15,16 +15,20 @@ import math
 import sys
 
 
-def load(path):
+def load(path, clock="real_time"):
     with open(path) as f:
         data = json.load(f)
     rows = []
-    for b in data["benchmarks"]:
-        if b.get("run_type") == "aggregate":
-            continue
-        name = b["name"]
+    benchmarks = data["benchmarks"]
+    # With --benchmark_repetitions, take each benchmark's median; otherwise its one run.
+    if any(b.get("aggregate_name") == "median" for b in benchmarks):
+        benchmarks = [b for b in benchmarks if b.get("aggregate_name") == "median"]
+    else:
+        benchmarks = [b for b in benchmarks if b.get("run_type") != "aggregate"]
+    for b in benchmarks:
+        name = b.get("run_name", b["name"])
         unit = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}[b.get("time_unit", "ns")]
-        ns = b["real_time"] * unit
+        ns = b[clock] * unit
         if name.startswith("BM_ImpactExact/tol_exp:"):
             label = "exact, tol 1e-" + name.split(":")[1]
         elif name.startswith("BM_ImpactPaper/N:"):
@@ -35,6 +39,10 @@ def load(path):
             label = "table, natural roll (k_T = 1)"
         elif name.startswith("BM_ImpactRollingExact"):
             label = "exact, natural roll (k_T = 1)"
+        elif name.startswith("BM_TableQueryRolling"):
+            label = "table query alone, natural roll (k_T = 1)"
+        elif name.startswith("BM_TableQuery"):
+            label = "table query alone"
         else:
             continue
         rows.append({
@@ -56,8 +64,10 @@ def table(rows):
            " RHS calls per impact |",
            "|---|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
-        # Ratios only within one input set (the natural-roll rows have their own).
-        ratio = f"{paper['ns'] / r['ns']:.1f}x" if paper and "natural roll" not in r["label"] else "-"
+        # Ratios only within one input set (the natural-roll rows have their own), and
+        # not for the table query alone, which leaves the declined impacts unsolved.
+        comparable = "natural roll" not in r["label"] and "query alone" not in r["label"]
+        ratio = f"{paper['ns'] / r['ns']:.1f}x" if paper and comparable else "-"
         t = f"{r['ns'] / 1000:.2f} us" if r["ns"] >= 1000 else f"{r['ns']:.0f} ns"
         out.append(f"| {r['label']} | {t} | {ratio} | {r['max_state']:.1e} |"
                    f" {r['median_state']:.1e} | {r['max_speed']:.1e} | {r['max_angle']:.1e} |"
@@ -66,8 +76,9 @@ def table(rows):
 
 
 def svg(rows, path):
-    # One input set per plot: the natural-roll rows are reported in the table only.
-    rows = [r for r in rows if "natural roll" not in r["label"]]
+    # One input set per plot: the natural-roll rows and the table query alone are
+    # reported in the table only.
+    rows = [r for r in rows if "natural roll" not in r["label"] and "query alone" not in r["label"]]
     w, h, left, right, top, bottom = 720, 460, 80, 30, 30, 60
     xs = [math.log10(r["ns"]) for r in rows]
     ys = [math.log10(max(r["max_state"], 1e-17)) for r in rows]
@@ -117,12 +128,16 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("json", help="bench_impact --benchmark_format=json output")
     ap.add_argument("--svg", help="write the plot here")
+    ap.add_argument("--cpu", action="store_true",
+                    help="use the CPU time of the process instead of wall-clock time (on a "
+                         "machine shared with other work)")
     args = ap.parse_args()
-    context, rows = load(args.json)
+    context, rows = load(args.json, "cpu_time" if args.cpu else "real_time")
     if not rows:
         sys.exit("error_vs_time: no impact benchmarks in " + args.json)
     print(f"Machine: {context.get('num_cpus', '?')} CPUs at {context.get('mhz_per_cpu', '?')} MHz, "
-          f"build {context.get('library_build_type', '?')}, {context.get('date', '')}")
+          f"build {context.get('library_build_type', '?')}, {context.get('date', '')}, "
+          f"{'CPU' if args.cpu else 'wall-clock'} time")
     print()
     print(table(rows))
     if args.svg:

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cfloat>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,6 +27,10 @@
 #include <thread>
 
 #include "impact_model.hpp"
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 namespace cueplan::physics {
 namespace {
@@ -84,6 +89,35 @@ constexpr double kRollTolerance = 1e-10;
 constexpr double kEdgeSlack = 1e-12;
 // Same dimensionless parameters: relative difference below this.
 constexpr double kParamsTolerance = 1e-12;
+
+// atan2(y, x) in radians, within a few units in the last place of std::atan2 but
+// several times cheaper (two divisions and a short polynomial): the octant
+// reduction brings the ratio t = min/max into [0, 1], the nearest of the nine points
+// k/8 takes out atan(k/8) exactly (tan(a - b) = (t - k/8) / (1 + t k/8), here in
+// the unrounded form (min - c max) / (max + c min)), and a Taylor polynomial covers
+// the rest, |r| <= 1/16, to 1e-19. Zeros, infinities and NaN go to std::atan2.
+double fast_atan2(double y, double x) {
+  // atan(k / 8), k = 0..8.
+  static constexpr double kAtanEighths[9] = {
+      0.0,                 0.12435499454676144, 0.24497866312686414,
+      0.35877067027057225, 0.46364760900080609, 0.55859931534356244,
+      0.64350110879328437, 0.71882999962162453, 0.78539816339744828};
+  const double ax = std::abs(x), ay = std::abs(y);
+  const bool steep = ay > ax;
+  const double lo = steep ? ax : ay, hi = steep ? ay : ax;
+  if (!(hi > 0.0 && hi < INFINITY && lo >= 0.0)) return std::atan2(y, x);  // 0, inf, NaN
+  const int k = static_cast<int>(lo / hi * 8.0 + 0.5);
+  const double c = 0.125 * k;
+  const double r = (lo - c * hi) / (hi + c * lo);
+  const double r2 = r * r;
+  const double poly =
+      r2 * (-1.0 / 3 +
+            r2 * (1.0 / 5 + r2 * (-1.0 / 7 + r2 * (1.0 / 9 + r2 * (-1.0 / 11 + r2 / 13)))));
+  double a = kAtanEighths[k] + (r + r * poly);
+  if (steep) a = std::numbers::pi / 2 - a;
+  if (std::signbit(x)) a = std::numbers::pi - a;
+  return std::copysign(a, y);
+}
 
 bool close(double a, double b) {
   return std::abs(a - b) <= kParamsTolerance * std::max(std::abs(a), std::abs(b)) + 1e-300;
@@ -220,6 +254,24 @@ class Reader {
   size_t pos_ = 0;
 };
 
+// Sizes a node array to n values of `fill`, asking first (before any page of it is
+// written) for transparent huge pages where the system grants them on request: a
+// query reads up to sixteen rows far apart in a table of tens of megabytes, and
+// with 4 KiB pages each row would cost a TLB miss of its own.
+void assign_nodes(std::vector<double>* nodes, size_t n, double fill) {
+  nodes->clear();
+  nodes->shrink_to_fit();
+  nodes->reserve(n);
+#ifdef __linux__
+  constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
+  const auto first = reinterpret_cast<uintptr_t>(nodes->data());
+  const uintptr_t begin = (first + kHugePage - 1) & ~(kHugePage - 1);
+  const uintptr_t end = (first + n * sizeof(double)) & ~(kHugePage - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#endif
+  nodes->assign(n, fill);
+}
+
 // Runs work(i, thread) for i in [0, count) on `threads` threads (this one included).
 template <class Work>
 void parallel_for(int threads, int count, Work&& work) {
@@ -314,7 +366,7 @@ double ImpactTable::Axis::node(int i) const {
   return kink + (i - kink_node) * step_high;
 }
 
-int ImpactTable::Axis::cell_of(double x, double* local) const {
+inline int ImpactTable::Axis::cell_of(double x, double* local) const {
   double u;
   int first, last;  // cells of the piece
   if (kink_node < 0 || x < kink) {
@@ -331,7 +383,7 @@ int ImpactTable::Axis::cell_of(double x, double* local) const {
   return cell;
 }
 
-int ImpactTable::Axis::stencil_start(int cell, int shift) const {
+inline int ImpactTable::Axis::stencil_start(int cell, int shift) const {
   int first = 0, last = nodes - 1;  // nodes of the cell's piece
   if (kink_node >= 0) {
     if (cell < kink_node)
@@ -390,9 +442,15 @@ void ImpactTable::interpolate_roll(const int cell[2], const double local[2], int
     lagrange_weights(cell[a] - start[a] + local[a], w[a]);
   }
   const size_t ns = static_cast<size_t>(roll_axes_[1].nodes);
+  const double* rows[4];
+  for (int i = 0; i < 4; ++i) rows[i] = &roll_nodes_[((start[0] + i) * ns + start[1]) * kStored];
+  // As in the volume: request the rows' cache lines together.
+  for (const double* row : rows) {
+    for (int b = 0; b < 4 * kStored; b += 8) __builtin_prefetch(row + b);
+    __builtin_prefetch(row + 4 * kStored - 1);
+  }
   double acc[kStored] = {};
-  for (int i = 0; i < 4; ++i)
-    add_row(&roll_nodes_[((start[0] + i) * ns + start[1]) * kStored], w[0][i], w[1], acc);
+  for (int i = 0; i < 4; ++i) add_row(rows[i], w[0][i], w[1], acc);
   std::copy(acc, acc + kStored, out);
 }
 
@@ -482,7 +540,7 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
   const int na = axes[0].nodes, nt = axes[1].nodes, ns = axes[2].nodes;
   const size_t plane_nodes = static_cast<size_t>(nt) * ns;
   const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
-  t.nodes_.assign(na * plane_nodes * kStored, kNaN);
+  assign_nodes(&t.nodes_, na * plane_nodes * kStored, kNaN);
   t.cell_stencil_.assign((na - 1) * plane_cells, kFallback);
 
   int threads =
@@ -581,7 +639,7 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
   if (t.has_roll_plane_) {
     const ImpactTable::Axis* roll = t.roll_axes_;
     const int ra = roll[0].nodes, rs = roll[1].nodes;
-    t.roll_nodes_.assign(static_cast<size_t>(ra) * rs * kStored, kNaN);
+    assign_nodes(&t.roll_nodes_, static_cast<size_t>(ra) * rs * kStored, kNaN);
     t.roll_stencil_.assign(static_cast<size_t>(ra - 1) * (rs - 1), kFallback);
     std::vector<double> alpha_edges(static_cast<size_t>(ra) * (rs - 1) * kStored);
     parallel_for(threads, ra, [&](int ia, int id) {
@@ -672,6 +730,53 @@ bool ImpactTable::covers(const CushionParams& params) const {
 
 // --- Query ----------------------------------------------------------------------
 
+namespace {
+
+constexpr double kRadianToDegree = 180.0 / std::numbers::pi;
+
+// The exact method's choice of stick or slip at the start of an impact (its
+// settle_modes): stick wherever the friction fits the cone, trying full stick first.
+// A slipping contact takes its slip's direction; one whose slip is zero slides
+// against the friction that full stick would have needed (only when both slips are
+// zero can such a contact slip beside a sticking one).
+detail::Modes starting_modes(const detail::Geometry& g, const detail::Slips& sl, bool zero_i,
+                             bool zero_c) {
+  if (!zero_i && !zero_c) return {false, false};
+  detail::Direction di = zero_i ? detail::Direction{} : detail::direction_of(sl.ix, sl.iy, {}, 0.0);
+  detail::Direction dc = zero_c ? detail::Direction{} : detail::direction_of(sl.cx, sl.cy, {}, 0.0);
+  if (zero_i && zero_c) {
+    const detail::Friction full = detail::friction_for(g, {true, true}, di, dc);
+    auto against = [](double x, double y) {
+      const double n = std::hypot(x, y);
+      return n > 0.0 ? detail::Direction{-x / n, -y / n} : detail::Direction{};
+    };
+    di = against(full.ix, full.iy);
+    dc = against(full.cx, full.cy);
+  }
+  const detail::Modes candidates[3] = {{zero_i, zero_c}, {zero_i, false}, {false, zero_c}};
+  for (const detail::Modes& m : candidates) {
+    if (!m.stick_i && !m.stick_c) continue;
+    const detail::Friction f = detail::friction_for(g, m, di, dc);
+    if ((!m.stick_i || detail::stick_margin_i(g, f) >= 0.0) &&
+        (!m.stick_c || detail::stick_margin_c(g, f) >= 0.0))
+      return m;
+  }
+  return {false, false};
+}
+
+// resolve_impact's message for a normal speed above the rigid limit ("%.10g"; to_chars
+// with a precision prints as printf does, without its cost).
+void set_rigid_limit_message(double normal_speed, std::string* message) {
+  static constexpr char kText[] = "velocity.y is above the rigid-cushion limit (m/s), got ";
+  char buf[sizeof kText + 32];
+  std::memcpy(buf, kText, sizeof kText - 1);
+  const std::to_chars_result end = std::to_chars(buf + sizeof kText - 1, buf + sizeof buf,
+                                                 normal_speed, std::chars_format::general, 10);
+  message->assign(buf, end.ptr);
+}
+
+}  // namespace
+
 bool ImpactTable::resolve(const CushionParams& params, const BallState& incoming,
                           ImpactResult* result) const {
   const Vec3& v = incoming.velocity;
@@ -685,18 +790,20 @@ bool ImpactTable::resolve(const CushionParams& params, const BallState& incoming
 
   // Section 3.1 read backwards: speed, incidence and the dimensionless spins.
   const double speed = std::sqrt(v.x * v.x + v.y * v.y);
-  const double ca = v.x / speed, sa = v.y / speed;
-  const double spin_scale = params.radius / speed;  // rad/s -> multiples of V0 / R
-  const double along = (w.x * ca + w.y * sa) * spin_scale;
+  const double inv_speed = 1.0 / speed;
+  const double ca = v.x * inv_speed, sa = v.y * inv_speed;
+  const double spin_scale = params.radius * inv_speed;  // rad/s -> multiples of V0 / R
+  const double ox = w.x * spin_scale, oy = w.y * spin_scale, oz = w.z * spin_scale;
+  const double along = ox * ca + oy * sa;
   if (!(std::abs(along) <= kPaperFormTolerance)) return false;
-  const double kt = (w.y * ca - w.x * sa) * spin_scale;
+  const double kt = oy * ca - ox * sa;
   // alpha > 90 mirrors alpha < 90 with the sidespin reversed.
   const bool mirrored = v.x < 0.0;
-  const double ks = (mirrored ? -w.z : w.z) * spin_scale;
+  const double ks = mirrored ? -oz : oz;
   const double k_max = options_.k_max;
   const double k_edge = k_max * (1.0 + kEdgeSlack);
   if (!(std::abs(kt) <= k_edge) || !(std::abs(ks) <= k_edge)) return false;
-  const double alpha = std::atan2(v.y, std::abs(v.x)) / kDegree;
+  const double alpha = fast_atan2(v.y, std::abs(v.x)) * kRadianToDegree;
   const double ks_in = std::clamp(ks, -k_max, k_max);
 
   // Interpolate on the natural-roll plane when k_T = 1, else in the volume.
@@ -740,7 +847,7 @@ bool ImpactTable::resolve(const CushionParams& params, const BallState& incoming
   r.outgoing.velocity = {q.ux * speed, q.uy * speed, 0.0};
   r.outgoing.spin = {q.ox * spin_unit, q.oy * spin_unit, q.oz * spin_unit};
   r.rebound_speed = std::sqrt(q.ux * q.ux + q.uy * q.uy) * speed;
-  r.rebound_angle_deg = std::atan2(-q.uy, q.ux) / kDegree;
+  r.rebound_angle_deg = fast_atan2(-q.uy, q.ux) * kRadianToDegree;
   r.impulse_compression = q.pc * impulse_unit;
   r.impulse_total = q.pt * impulse_unit;
   r.work_compression = q.wc * work_unit;
@@ -754,45 +861,26 @@ bool ImpactTable::resolve(const CushionParams& params, const BallState& incoming
     detail::Geometry g;
     g.s = sin_theta_;
     g.c = cos_theta_;
-    const detail::Scaled s0 = {ca, sa, w.x * spin_scale, w.y * spin_scale, w.z * spin_scale};
-    const detail::Slips sl = detail::slips_of(g, s0);
+    const detail::Slips sl = detail::slips_of(g, {ca, sa, ox, oy, oz});
     constexpr double kZeroSlip = 1e-10;  // as the exact method
     const bool zero_i = sl.ix * sl.ix + sl.iy * sl.iy <= kZeroSlip * kZeroSlip;
     const bool zero_c = sl.cx * sl.cx + sl.cy * sl.cy <= kZeroSlip * kZeroSlip;
-    bool stick_i = false, stick_c = false;
+    detail::Modes start{false, false};
     if (zero_i || zero_c) {
-      g = detail::Geometry::from(params);
-      const detail::Friction full = detail::friction_for(g, {zero_i, zero_c}, {}, {});
-      auto against = [](double x, double y) {
-        const double n = std::hypot(x, y);
-        return n > 0.0 ? detail::Direction{-x / n, -y / n} : detail::Direction{};
-      };
-      const detail::Direction di =
-          zero_i ? against(full.ix, full.iy) : detail::direction_of(sl.ix, sl.iy, {}, 0.0);
-      const detail::Direction dc =
-          zero_c ? against(full.cx, full.cy) : detail::direction_of(sl.cx, sl.cy, {}, 0.0);
-      const detail::Modes candidates[4] = {
-          {zero_i, zero_c}, {zero_i, false}, {false, zero_c}, {false, false}};
-      for (const detail::Modes& m : candidates) {
-        const detail::Friction f = detail::friction_for(g, m, di, dc);
-        if ((!m.stick_i || detail::stick_margin_i(g, f) >= 0.0) &&
-            (!m.stick_c || detail::stick_margin_c(g, f) >= 0.0)) {
-          stick_i = m.stick_i;
-          stick_c = m.stick_c;
-          break;
-        }
-      }
+      g.mu_w = params_.mu_cushion;
+      g.mu_s = params_.mu_table;
+      g.a = 1.0 - 2.5 * g.s;
+      g.b = g.s * g.s + 2.5;
+      g.d = 2.5 - g.s;
+      start = starting_modes(g, sl, zero_i, zero_c);
     }
-    r.cushion_slipping_at_start = !stick_i;
-    r.table_slipping_at_start = !stick_c;
+    r.cushion_slipping_at_start = !start.stick_i;
+    r.table_slipping_at_start = !start.stick_c;
   }
 
   if (v.y > params.rigid_speed_limit) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "velocity.y is above the rigid-cushion limit (m/s), got %.10g",
-                  v.y);
     r.status = ImpactStatus::rigid_limit_exceeded;
-    r.message = buf;
+    set_rigid_limit_message(v.y, &r.message);
   }
   return true;
 }
@@ -936,9 +1024,9 @@ std::optional<ImpactTable> ImpactTableAccess::load(const std::string& path) {
     if (!in.get(&sizes[i]) || sizes[i] != expected[i]) return std::nullopt;
   if (in.remaining() != (sizes[0] + sizes[2]) * sizeof(double) + sizes[1] + sizes[3])
     return std::nullopt;
-  t.nodes_.resize(sizes[0]);
+  assign_nodes(&t.nodes_, sizes[0], 0.0);
   t.cell_stencil_.resize(sizes[1]);
-  t.roll_nodes_.resize(sizes[2]);
+  assign_nodes(&t.roll_nodes_, sizes[2], 0.0);
   t.roll_stencil_.resize(sizes[3]);
   if (!in.get_bytes(t.nodes_.data(), sizes[0] * sizeof(double)) ||
       !in.get_bytes(t.cell_stencil_.data(), sizes[1]) ||
