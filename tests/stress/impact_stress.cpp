@@ -35,6 +35,7 @@
 
 #include "cueplan/physics/cushion_impact.hpp"
 #include "support/physics_checks.hpp"
+#include "support/stress_output.hpp"
 
 namespace cueplan::physics {
 namespace {
@@ -544,13 +545,9 @@ int run(const Options& opt) {
         << ", \"paper_sample\": " << paper_cases.size() << ", \"paper_steps\": " << opt.paper_steps
         << ", \"paper_max_difference\": " << paper_max
         << ", \"paper_max_difference_regular\": " << paper_max_regular
-        << ", \"failed_checks\": " << fail.total() << ", \"statuses\": {";
-    bool first = true;
-    for (const auto& [k, n] : statuses) {
-      out << (first ? "" : ", ") << "\"" << k << "\": " << n;
-      first = false;
-    }
-    out << "}}\n";
+        << ", \"failed_checks\": " << fail.total() << ", \"statuses\": ";
+    test::write_counts_json(out, statuses);
+    out << "}\n";
     if (!out) {
       std::fprintf(stderr, "stress_impacts: could not write %s\n", opt.json.c_str());
       return 1;
@@ -559,19 +556,11 @@ int run(const Options& opt) {
   return fail.total() == 0 ? 0 : 1;
 }
 
-bool parse_count(const char* text, long long min, long long* out) {
-  char* end = nullptr;
-  const long long v = std::strtoll(text, &end, 10);
-  if (end == text || *end != '\0' || v < min) return false;
-  *out = v;
-  return true;
-}
-
 }  // namespace
 }  // namespace cueplan::physics
 
 int main(int argc, char** argv) {
-  using cueplan::physics::parse_count;
+  using cueplan::physics::test::parse_count;
   cueplan::physics::Options opt;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

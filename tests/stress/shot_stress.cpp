@@ -36,6 +36,7 @@
 
 #include "cueplan/physics/shot.hpp"
 #include "support/physics_checks.hpp"
+#include "support/stress_output.hpp"
 
 namespace cueplan::physics {
 namespace {
@@ -559,13 +560,9 @@ int run(const Options& opt) {
         << ", \"event_cap_endless\": " << capped_endless << ", \"endless\": " << endless
         << ", \"refused\": " << refused << ", \"refused_by_name\": " << refused_right
         << ", \"max_us\": " << 1e6 * max_seconds << ", \"failed_checks\": " << fail.total()
-        << ", \"statuses\": {";
-    bool first = true;
-    for (const auto& [k, n] : statuses) {
-      out << (first ? "" : ", ") << "\"" << k << "\": " << n;
-      first = false;
-    }
-    out << "}}\n";
+        << ", \"statuses\": ";
+    test::write_counts_json(out, statuses);
+    out << "}\n";
     if (!out) {
       std::fprintf(stderr, "stress_shots: could not write %s\n", opt.json.c_str());
       return 1;
@@ -574,19 +571,11 @@ int run(const Options& opt) {
   return fail.total() == 0 ? 0 : 1;
 }
 
-bool parse_count(const char* text, long long min, long long* out) {
-  char* end = nullptr;
-  const long long v = std::strtoll(text, &end, 10);
-  if (end == text || *end != '\0' || v < min) return false;
-  *out = v;
-  return true;
-}
-
 }  // namespace
 }  // namespace cueplan::physics
 
 int main(int argc, char** argv) {
-  using cueplan::physics::parse_count;
+  using cueplan::physics::test::parse_count;
   cueplan::physics::Options opt;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
