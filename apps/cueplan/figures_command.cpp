@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
+#include <system_error>
 #include <optional>
 #include <ostream>
 #include <vector>
@@ -311,14 +312,34 @@ FiguresCommand::FiguresCommand(CLI::App& parent) {
 
 bool FiguresCommand::selected() const { return command_->parsed(); }
 
+std::string FiguresCommand::check_flags() const {
+  const double step = args_.alpha_step_deg;
+  if (!std::isfinite(step) || !(step > 0.0) || !(step <= 90.0))
+    return "--alpha-step must lie in (0, 90] degrees, got " + format_number(step);
+  if (args_.out_dir.empty()) return "--out must name a directory, got ''";
+  // A directory that is missing is created by run(); a file in its place is an error.
+  std::error_code ec;
+  if (std::filesystem::exists(args_.out_dir, ec) &&
+      !std::filesystem::is_directory(args_.out_dir, ec))
+    return "--out: " + args_.out_dir + " exists and is not a directory";
+  return {};
+}
+
+int FiguresCommand::validate(std::ostream& err) const {
+  if (std::string why = check_flags(); !why.empty()) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
 int FiguresCommand::run(std::ostream& out, std::ostream& err) const {
   const auto usage = [&](const std::string& why) {
     err << kCommandName << ": " << why << '\n';
     return kExitUsage;
   };
+  if (std::string why = check_flags(); !why.empty()) return usage(why);
   const double step = args_.alpha_step_deg;
-  if (!std::isfinite(step) || !(step > 0.0) || !(step <= 90.0))
-    return usage("--alpha-step must lie in (0, 90] degrees, got " + format_number(step));
   const std::filesystem::path dir = args_.out_dir;
   if (std::string why = ensure_directory(dir); !why.empty()) return usage("--out: " + why);
 

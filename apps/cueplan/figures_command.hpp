@@ -25,10 +25,17 @@ class FiguresCommand {
 
   bool selected() const;
 
-  // Runs the parsed command; returns an ExitCode.
+  // Checks the flags without computing or writing anything (the --out directory is not
+  // created); returns kExitOk, or kExitUsage with its one line written to `err`.
+  int validate(std::ostream& err) const;
+
+  // Runs the parsed command (validate() first); returns an ExitCode.
   int run(std::ostream& out, std::ostream& err) const;
 
  private:
+  // All the checks of validate(); empty or the one-line reason to stop.
+  std::string check_flags() const;
+
   CLI::App* command_ = nullptr;
   FiguresArgs args_;
 };

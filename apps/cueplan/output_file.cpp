@@ -18,6 +18,21 @@ std::string ensure_directory(const std::filesystem::path& dir) {
   return {};
 }
 
+std::string check_output_file(const std::filesystem::path& path) {
+  if (path.empty()) return "no file name given";
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return path.string() + " is a directory";
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
+  const std::filesystem::file_status status = std::filesystem::status(dir, ec);
+  if (!std::filesystem::exists(status))
+    return "cannot write " + path.string() + ": directory " + dir.string() + " does not exist";
+  if (!std::filesystem::is_directory(status))
+    return "cannot write " + path.string() + ": " + dir.string() + " is not a directory";
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    return "cannot write " + path.string() + ": " + std::strerror(errno);
+  return {};
+}
+
 std::string write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
   // The process id keeps two concurrent writers of the same file apart.
   std::filesystem::path temporary = path;

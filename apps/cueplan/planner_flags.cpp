@@ -41,8 +41,9 @@ std::string with_flag_name(const std::string& message) {
 void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
   c.add_option("--global", args->global,
                "Global search (NLopt): direct_l (DIRECT-L), crs2 (controlled random search), "
-               "mlsl (multi-level single linkage) or isres (evolution strategy)")
-      ->type_name("direct_l|crs2|mlsl|isres")
+               "mlsl (multi-level single linkage) or isres (evolution strategy); or (OMPL) "
+               "ompl_kpiece1 (a KPIECE1 tree of strokes spread by where they land)")
+      ->type_name("direct_l|crs2|mlsl|isres|ompl_kpiece1")
       ->capture_default_str()
       ->group(group);
   c.add_option("--local", args->local,
@@ -102,7 +103,7 @@ std::string read_planner_options(const PlannerArgs& args, int threads,
                                  const physics::SimulationOptions& simulation,
                                  plan::PlannerOptions* options) {
   if (!plan::parse_global_method(args.global, &options->global))
-    return "--global must be one of direct_l, crs2, mlsl, isres, got '" + args.global + "'";
+    return "--global must be one of direct_l, crs2, mlsl, isres, ompl_kpiece1, got '" + args.global + "'";
   if (!plan::parse_local_method(args.local, &options->local))
     return "--local must be one of bobyqa, sbplx, cobyla, neldermead, got '" + args.local + "'";
   if (args.max_evaluations < 1)

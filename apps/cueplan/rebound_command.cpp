@@ -313,27 +313,48 @@ std::string ReboundCommand::read_incidence(const phys::CushionParams& params, In
   return {};
 }
 
+struct ReboundCommand::Inputs {
+  phys::ImpactOptions options;
+  phys::CushionParams params;
+  bool batch = false;
+  BatchInput batch_input;  // with --batch
+  Incidence in;            // without
+};
+
+std::string ReboundCommand::read_inputs(Inputs* inputs) const {
+  if (std::string why = read_options(&inputs->options); !why.empty()) return why;
+  if (std::string why = read_params(&inputs->params); !why.empty()) return why;
+  // The incoming ball(s): whole-input errors come before any table is built.
+  inputs->batch = given("--batch");
+  if (inputs->batch) {
+    inputs->batch_input = read_batch_csv(args_.batch_file, kBatchInputHeader);
+    return inputs->batch_input.error;
+  }
+  return read_incidence(inputs->params, &inputs->in);
+}
+
+int ReboundCommand::validate(std::ostream& err) const {
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
 int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
   const auto usage = [&](const std::string& why) {
     err << kCommandName << ": " << why << '\n';
     return kExitUsage;
   };
 
-  phys::ImpactOptions options;
-  if (std::string why = read_options(&options); !why.empty()) return usage(why);
-  phys::CushionParams params;
-  if (std::string why = read_params(&params); !why.empty()) return usage(why);
-
-  // The incoming ball(s): whole-input errors come before any table is built.
-  const bool batch = given("--batch");
-  BatchInput batch_input;
-  Incidence in;
-  if (batch) {
-    batch_input = read_batch_csv(args_.batch_file, kBatchInputHeader);
-    if (!batch_input.error.empty()) return usage(batch_input.error);
-  } else if (std::string why = read_incidence(params, &in); !why.empty()) {
-    return usage(why);
-  }
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);
+  phys::ImpactOptions& options = inputs.options;
+  const phys::CushionParams& params = inputs.params;
+  const bool batch = inputs.batch;
+  const BatchInput& batch_input = inputs.batch_input;
+  const Incidence& in = inputs.in;
 
   // The surrogate, built or loaded once for every impact of this run.
   std::optional<phys::ImpactTable> table;

@@ -52,11 +52,19 @@ class ReboundCommand {
 
   bool selected() const;
 
-  // Runs the parsed command; returns an ExitCode.
+  // Checks every flag and the batch file without doing any work or writing anything;
+  // returns kExitOk, or kExitUsage with its one line written to `err`.
+  int validate(std::ostream& err) const;
+
+  // Runs the parsed command (validate() first); returns an ExitCode.
   int run(std::ostream& out, std::ostream& err) const;
 
  private:
+  struct Inputs;  // everything run() needs, read and checked from the flags
+
   bool given(const char* flag) const;
+  // All the checks of validate(); empty or the one-line reason to stop.
+  std::string read_inputs(Inputs* inputs) const;
 
   // Stages of run(), in order; each returns empty or the one-line reason to stop.
   std::string read_options(physics::ImpactOptions* options) const;

@@ -441,28 +441,53 @@ int SimulateCommand::prepare_table(const prob::Problem& problem, phys::ImpactTab
                               given("--accuracy"), table, options, err);
 }
 
+struct SimulateCommand::Inputs {
+  phys::SimulationOptions options;
+  bool batch = false;
+  BatchInput batch_input;  // with --batch
+  phys::Shot shot;         // without
+  prob::LoadResult loaded;
+};
+
+std::string SimulateCommand::read_inputs(Inputs* inputs) const {
+  if (std::string why = read_options(&inputs->options); !why.empty()) return why;
+  // The shot(s), the output path and the problem: whole-input errors come before any
+  // table is built.
+  inputs->batch = given("--batch");
+  if (inputs->batch) {
+    inputs->batch_input = read_batch_csv(args_.batch_file, kShotBatchHeader);
+    if (!inputs->batch_input.error.empty()) return inputs->batch_input.error;
+  } else if (std::string why = read_shot(&inputs->shot); !why.empty()) {
+    return why;
+  }
+  if (!args_.svg_file.empty())
+    if (std::string why = check_output_file(args_.svg_file); !why.empty()) return "--svg: " + why;
+  inputs->loaded = prob::load_problem(args_.problem_file);
+  return inputs->loaded.error;
+}
+
+int SimulateCommand::validate(std::ostream& err) const {
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
 int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
   const auto usage = [&](const std::string& why) {
     err << kCommandName << ": " << why << '\n';
     return kExitUsage;
   };
 
-  phys::SimulationOptions options;
-  if (std::string why = read_options(&options); !why.empty()) return usage(why);
-
-  // The shot(s) and the problem: whole-input errors come before any table is built.
-  const bool batch = given("--batch");
-  BatchInput batch_input;
-  phys::Shot shot;
-  if (batch) {
-    batch_input = read_batch_csv(args_.batch_file, kShotBatchHeader);
-    if (!batch_input.error.empty()) return usage(batch_input.error);
-  } else if (std::string why = read_shot(&shot); !why.empty()) {
-    return usage(why);
-  }
-  const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
-  if (!loaded.ok()) return usage(loaded.error);
-  const prob::Problem& problem = *loaded.problem;
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);
+  phys::SimulationOptions& options = inputs.options;
+  const bool batch = inputs.batch;
+  const BatchInput& batch_input = inputs.batch_input;
+  const phys::Shot& shot = inputs.shot;
+  const prob::Problem& problem = *inputs.loaded.problem;
 
   phys::ImpactTable table;
   if (options.impact_method == phys::ImpactMethod::table)

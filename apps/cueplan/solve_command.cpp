@@ -12,6 +12,7 @@
 #include "cueplan/problems/problem.hpp"
 #include "exit_codes.hpp"
 #include "output_file.hpp"
+#include "shot_report.hpp"
 #include "shot_words.hpp"
 #include "table_drawing.hpp"
 
@@ -34,93 +35,6 @@ std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) 
          " centre (fractions of the ball radius; the spin "
          "limit is " +
          fixed("%.3g", limits.spin_max / kSpinPerTipOffset) + " R)";
-}
-
-// ---------------------------------------------------------------------------
-// Constraints, each reported on its own.
-
-struct ConstraintRow {
-  const char* name;   // speed, spin, aim, cushions, pocket, obstacle, rigid limit
-  const char* key;    // the same as a JSON key: ..., rigid_limit
-  const char* state;  // "ok", "broken" or "flagged" (rigid limit, not enforced)
-  std::string detail;
-};
-
-// An aim the problem allows, to judge the other limits on their own.
-double allowed_aim(const prob::Limits& limits, double aim_deg) {
-  return limits.aim.mode == prob::AimMode::free ? aim_deg : limits.aim.lo_deg;
-}
-
-std::vector<ConstraintRow> constraints(const prob::Problem& problem, const plan::PlannedShot& p,
-                                       bool enforce_rigid_limit) {
-  const prob::Limits& l = problem.limits;
-  const phys::Shot& s = p.shot;
-  const double aim = allowed_aim(l, s.aim_deg);
-  std::vector<ConstraintRow> rows;
-  const auto row = [&](const char* name, bool ok, std::string detail) {
-    rows.push_back({name, name, ok ? "ok" : "broken", std::move(detail)});
-  };
-
-  const std::string speed = prob::check_shot(l, {s.speed, aim, 0.0, 0.0});
-  row("speed", speed.empty(),
-      speed.empty() ? number(s.speed, "m/s") + " within [" + number(l.speed_min) + ", " +
-                          number(l.speed_max) + "] m/s"
-                    : speed);
-  const std::string spin = prob::check_shot(l, {l.speed_min, aim, s.topspin_k, s.sidespin_k});
-  row("spin", spin.empty(),
-      spin.empty() ? "sqrt(k_T^2 + k_S^2) = " + number(std::hypot(s.topspin_k, s.sidespin_k)) +
-                         " within " + number(l.spin_max)
-                   : spin);
-  const std::string aim_check = prob::check_shot(l, {l.speed_min, s.aim_deg, 0.0, 0.0});
-  std::string aim_detail = aim_check;
-  if (aim_check.empty())
-    aim_detail = l.aim.mode == prob::AimMode::free
-                     ? number(s.aim_deg, "deg") + " (any aim allowed)"
-                     : number(s.aim_deg, "deg") + " within [" + number(l.aim.lo_deg) + ", " +
-                           number(l.aim.hi_deg) + "] deg";
-  row("aim", aim_check.empty(), aim_detail);
-  const bool cushions_ok = p.cushion_hits >= l.cushions_min && p.cushion_hits <= l.cushions_max;
-  row("cushions", cushions_ok,
-      std::to_string(p.cushion_hits) + " (the problem allows " + cushions_allowed(l) + ")");
-  const bool pocketed = p.outcome == phys::ShotStatus::pocketed;
-  row("pocket", !pocketed, pocketed ? "the cue ball is pocketed" : "not pocketed");
-  const bool touched = p.outcome == phys::ShotStatus::hit_obstacle;
-  row("obstacle", !touched,
-      touched                           ? "the cue ball touches an obstacle ball"
-      : problem.scene.obstacles.empty() ? "no obstacle balls on this table"
-                                        : "clears every obstacle ball");
-
-  const double limit = problem.scene.ball_and_cushion.rigid_speed_limit;
-  std::string rigid = "max cushion normal speed " + number(p.max_cushion_normal_speed, "m/s");
-  if (!p.rigid_limit_exceeded) {
-    rows.push_back({"rigid limit", "rigid_limit", "ok", rigid + ", below " + number(limit, "m/s")});
-  } else if (enforce_rigid_limit) {
-    rows.push_back(
-        {"rigid limit", "rigid_limit", "broken",
-         rigid + ", above " + number(limit, "m/s") + " (enforced by --enforce-rigid-limit)"});
-  } else {
-    rows.push_back({"rigid limit", "rigid_limit", "flagged",
-                    rigid + ", above " + number(limit, "m/s") +
-                        ": the rigid-cushion model is not trusted there (--enforce-rigid-limit "
-                        "rejects such strokes)"});
-  }
-  return rows;
-}
-
-std::string landing_text(const prob::Problem& problem, const plan::PlannedShot& p) {
-  switch (p.outcome) {
-    case phys::ShotStatus::rest:
-      return "x = " + number(p.final_position.x, "m") + ", y = " + number(p.final_position.y, "m");
-    case phys::ShotStatus::pocketed:
-      return "none: pocketed at x = " + number(p.final_position.x, "m") +
-             ", y = " + number(p.final_position.y, "m");
-    case phys::ShotStatus::hit_obstacle:
-      return "none: stopped against an obstacle ball at x = " + number(p.final_position.x, "m") +
-             ", y = " + number(p.final_position.y, "m");
-    default:
-      (void)problem;
-      return std::string("none: ") + phys::to_string(p.outcome);
-  }
 }
 
 std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) {
@@ -162,7 +76,7 @@ void write_text(std::ostream& out, const prob::Problem& problem,
                    " (w_S = " + number(s.sidespin_k * spin_unit, "rad/s") + ")");
   line("stroke", plan::describe_stroke(s));
   line("tip offset", tip_offset_text(s, problem.limits));
-  line("landing", landing_text(problem, b));
+  line("landing", landing_text(b));
   line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
                      ", tolerance " + number(problem.tolerance, "m"));
   line("miss distance", miss_text(problem, b));
@@ -221,43 +135,6 @@ void write_text(std::ostream& out, const prob::Problem& problem,
 // ---------------------------------------------------------------------------
 // JSON
 
-ordered_json vec(phys::Vec2 v) { return {v.x, v.y}; }
-
-ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot& p,
-                          const plan::PlannerOptions& options) {
-  ordered_json j;
-  j["shot"] = {{"speed", p.shot.speed},
-               {"aim_deg", p.shot.aim_deg},
-               {"topspin_k", p.shot.topspin_k},
-               {"sidespin_k", p.shot.sidespin_k}};
-  const plan::TipOffset t = plan::tip_offset(p.shot);
-  j["tip_offset"] = {{"right", t.right}, {"up", t.up}};
-  j["stroke"] = plan::describe_stroke(p.shot);
-  j["outcome"] = phys::to_string(p.outcome);
-  j["final_position"] = vec(p.final_position);
-  // null when the ball did not come to rest on the table (JSON has no infinity)
-  j["miss_distance"] =
-      std::isfinite(p.miss_distance) ? ordered_json(p.miss_distance) : ordered_json();
-  j["success_probability"] = p.success_probability;
-  j["solves"] = p.solves;
-  j["cushion_hits"] = p.cushion_hits;
-  j["route"] = p.route;
-  ordered_json names = ordered_json::array();
-  for (int c : p.route) names.push_back(cushion_name(problem.scene, c));
-  j["route_names"] = names;
-  j["family"] = p.family;
-  j["within_limits"] = p.within_limits;
-  j["violations"] = p.violations;
-  ordered_json rows = ordered_json::object();
-  for (const ConstraintRow& c : constraints(problem, p, options.enforce_rigid_limit))
-    rows[c.key] = {{"state", c.state}, {"detail", c.detail}};
-  j["constraints"] = rows;
-  j["max_cushion_normal_speed"] = p.max_cushion_normal_speed;
-  j["rigid_limit_exceeded"] = p.rigid_limit_exceeded;
-  j["impact_method"] = phys::to_string(p.impact_method);
-  return j;
-}
-
 void write_json(std::ostream& out, const prob::Problem& problem,
                 const plan::PlannerOptions& options, const plan::PlanResult& r,
                 const std::string& svg_file) {
@@ -265,7 +142,7 @@ void write_json(std::ostream& out, const prob::Problem& problem,
   j["problem"] = {{"name", problem.name}, {"source", problem.source}};
   j["status"] = plan::to_string(r.status);
   j["message"] = r.message;
-  const ordered_json best = planned_json(problem, r.best, options);
+  const ordered_json best = planned_json(problem, r.best, options.enforce_rigid_limit);
   for (const auto& [key, value] : best.items()) j[key] = value;
   j["evaluations"] = r.evaluations;
   j["time_s"] = r.time_s;
@@ -273,11 +150,11 @@ void write_json(std::ostream& out, const prob::Problem& problem,
   j["converged_searches"] = r.converged_searches;
   ordered_json alternatives = ordered_json::array();
   for (const plan::PlannedShot& a : r.alternatives)
-    alternatives.push_back(planned_json(problem, a, options));
+    alternatives.push_back(planned_json(problem, a, options.enforce_rigid_limit));
   j["alternatives"] = alternatives;
-  j["target"] = vec(problem.target);
+  j["target"] = point_json(problem.target);
   j["tolerance"] = problem.tolerance;
-  j["cue_ball"] = vec(problem.cue_ball);
+  j["cue_ball"] = point_json(problem.cue_ball);
   j["options"] = {{"global", plan::to_string(options.global)},
                   {"local", plan::to_string(options.local)},
                   {"max_evaluations", options.max_evaluations},
@@ -420,23 +297,47 @@ SolveCommand::SolveCommand(CLI::App& parent) {
 
 bool SolveCommand::selected() const { return command_->parsed(); }
 
+struct SolveCommand::Inputs {
+  phys::SimulationOptions simulation;
+  plan::PlannerOptions options;
+  prob::LoadResult loaded;
+};
+
+std::string SolveCommand::read_inputs(Inputs* inputs) const {
+  // Flags first, then the output path and the problem: whole-input errors come before
+  // any table is built.
+  if (std::string why = read_impact_options(args_.impact, &inputs->simulation); !why.empty())
+    return why;
+  if (std::string why = read_planner_options(args_.planner, args_.threads, inputs->simulation,
+                                             &inputs->options);
+      !why.empty())
+    return why;
+  if (!args_.svg_file.empty())
+    if (std::string why = check_output_file(args_.svg_file); !why.empty()) return "--svg: " + why;
+  inputs->loaded = prob::load_problem(args_.problem_file);
+  return inputs->loaded.error;
+}
+
+int SolveCommand::validate(std::ostream& err) const {
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
 int SolveCommand::run(std::ostream& out, std::ostream& err) const {
   const auto usage = [&](const std::string& why) {
     err << kCommandName << ": " << why << '\n';
     return kExitUsage;
   };
 
-  // Flags first, then the problem: whole-input errors come before any table is built.
-  phys::SimulationOptions simulation;
-  if (std::string why = read_impact_options(args_.impact, &simulation); !why.empty())
-    return usage(why);
-  plan::PlannerOptions options;
-  if (std::string why = read_planner_options(args_.planner, args_.threads, simulation, &options);
-      !why.empty())
-    return usage(why);
-  const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
-  if (!loaded.ok()) return usage(loaded.error);
-  const prob::Problem& problem = *loaded.problem;
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);
+  phys::SimulationOptions& simulation = inputs.simulation;
+  plan::PlannerOptions& options = inputs.options;
+  const prob::Problem& problem = *inputs.loaded.problem;
 
   phys::ImpactTable table;
   if (simulation.impact_method == phys::ImpactMethod::table) {

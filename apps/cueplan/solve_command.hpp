@@ -35,11 +35,20 @@ class SolveCommand {
 
   bool selected() const;
 
-  // Runs the parsed command; returns an ExitCode: 0 solved, 1 unreachable or budget
-  // exhausted (the best found is still reported), 2 bad input.
+  // Checks every flag, the problem file and the --svg path without doing any work or
+  // writing anything; returns kExitOk, or kExitUsage with its one line written to `err`.
+  int validate(std::ostream& err) const;
+
+  // Runs the parsed command (validate() first); returns an ExitCode: 0 solved, 1
+  // unreachable or budget exhausted (the best found is still reported), 2 bad input.
   int run(std::ostream& out, std::ostream& err) const;
 
  private:
+  struct Inputs;  // everything run() needs, read and checked from the flags and file
+
+  // All the checks of validate(); empty or the one-line reason to stop.
+  std::string read_inputs(Inputs* inputs) const;
+
   CLI::App* command_ = nullptr;
   SolveArgs args_;
 };

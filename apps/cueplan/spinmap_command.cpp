@@ -379,6 +379,55 @@ bool SpinmapCommand::selected() const { return command_->parsed(); }
 
 bool SpinmapCommand::given(const char* flag) const { return command_->count(flag) > 0; }
 
+struct SpinmapCommand::Inputs {
+  PictureFormat format = PictureFormat::svg;
+  bool speed_given = false;  // --speed and --aim; otherwise the planner's stroke
+  phys::SimulationOptions simulation;
+  plan::PlannerOptions planner_options;
+  prob::LoadResult loaded;
+};
+
+std::string SpinmapCommand::read_inputs(Inputs* inputs) const {
+  // Flags first, then the output path and the problem: whole-input errors come before
+  // any table is built.
+  const std::optional<PictureFormat> format = format_of(args_.out_file);
+  if (!format) return "--out must name a .svg or .png file, got '" + args_.out_file + "'";
+  inputs->format = *format;
+  const bool speed_given = given("--speed");
+  inputs->speed_given = speed_given;
+  if (speed_given != given("--aim"))
+    return std::string(speed_given ? "--aim" : "--speed") + " is required with " +
+           (speed_given ? "--speed" : "--aim") +
+           ": give both, or neither to use the planner's best stroke";
+  if (speed_given && (!std::isfinite(args_.speed) || !(args_.speed > 0.0)))
+    return "--speed must be finite and above 0 (m/s), got " + number(args_.speed);
+  if (speed_given && !std::isfinite(args_.aim_deg))
+    return "--aim must be finite (deg), got " + number(args_.aim_deg);
+  if (args_.grid < 3 || args_.grid > 1001)
+    return "--grid must be 3 to 1001 points across the disc, got " + std::to_string(args_.grid);
+  if (args_.threads < 0)
+    return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
+  if (std::string why = read_impact_options(args_.impact, &inputs->simulation); !why.empty())
+    return why;
+  if (!speed_given)
+    if (std::string why = read_planner_options(args_.planner, args_.threads, inputs->simulation,
+                                               &inputs->planner_options);
+        !why.empty())
+      return why;
+  if (std::string why = check_output_file(args_.out_file); !why.empty()) return "--out: " + why;
+  inputs->loaded = prob::load_problem(args_.problem_file);
+  return inputs->loaded.error;
+}
+
+int SpinmapCommand::validate(std::ostream& err) const {
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
 int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
   const auto usage = [&](const std::string& why) {
     err << kCommandName << ": " << why << '\n';
@@ -386,36 +435,13 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
   };
   const Clock::time_point started = Clock::now();
 
-  // Flags first, then the problem: whole-input errors come before any table is built.
-  const std::optional<PictureFormat> format = format_of(args_.out_file);
-  if (!format) return usage("--out must name a .svg or .png file, got '" + args_.out_file + "'");
-  const bool speed_given = given("--speed");
-  if (speed_given != given("--aim"))
-    return usage(std::string(speed_given ? "--aim" : "--speed") + " is required with " +
-                 (speed_given ? "--speed" : "--aim") +
-                 ": give both, or neither to use the planner's best stroke");
-  if (speed_given && (!std::isfinite(args_.speed) || !(args_.speed > 0.0)))
-    return usage("--speed must be finite and above 0 (m/s), got " + number(args_.speed));
-  if (speed_given && !std::isfinite(args_.aim_deg))
-    return usage("--aim must be finite (deg), got " + number(args_.aim_deg));
-  if (args_.grid < 3 || args_.grid > 1001)
-    return usage("--grid must be 3 to 1001 points across the disc, got " +
-                 std::to_string(args_.grid));
-  if (args_.threads < 0)
-    return usage("--threads must be 0 (one per core) or more, got " +
-                 std::to_string(args_.threads));
-  phys::SimulationOptions simulation;
-  if (std::string why = read_impact_options(args_.impact, &simulation); !why.empty())
-    return usage(why);
-  plan::PlannerOptions planner_options;
-  if (!speed_given)
-    if (std::string why =
-            read_planner_options(args_.planner, args_.threads, simulation, &planner_options);
-        !why.empty())
-      return usage(why);
-  const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
-  if (!loaded.ok()) return usage(loaded.error);
-  const prob::Problem& problem = *loaded.problem;
+  Inputs inputs;
+  if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);
+  const PictureFormat format = inputs.format;
+  const bool speed_given = inputs.speed_given;
+  phys::SimulationOptions& simulation = inputs.simulation;
+  plan::PlannerOptions& planner_options = inputs.planner_options;
+  const prob::Problem& problem = *inputs.loaded.problem;
 
   phys::ImpactTable table;
   if (simulation.impact_method == phys::ImpactMethod::table) {
@@ -461,7 +487,7 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
   std::string bytes;
   try {
     bytes =
-        *format == PictureFormat::svg ? render_spin_map_svg(picture) : render_spin_map_png(picture);
+        format == PictureFormat::svg ? render_spin_map_svg(picture) : render_spin_map_png(picture);
   } catch (const std::exception& e) {
     err << kCommandName << ": cannot draw the picture: " << e.what() << '\n';
     return kExitFailed;
@@ -471,7 +497,7 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
 
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
   if (args_.json)
-    write_json(out, problem, map, source, simulation, args_.out_file, *format, seconds);
+    write_json(out, problem, map, source, simulation, args_.out_file, format, seconds);
   else
     write_text(out, problem, map, source, simulation, args_.out_file, seconds);
   return out ? kExitOk : kExitFailed;

@@ -41,12 +41,20 @@ class SpinmapCommand {
 
   bool selected() const;
 
-  // Runs the parsed command; returns an ExitCode: 0 when the picture was written, 2 for
-  // bad input.
+  // Checks every flag, the problem file and the --out path without doing any work or
+  // writing anything; returns kExitOk, or kExitUsage with its one line written to `err`.
+  int validate(std::ostream& err) const;
+
+  // Runs the parsed command (validate() first); returns an ExitCode: 0 when the picture
+  // was written, 2 for bad input.
   int run(std::ostream& out, std::ostream& err) const;
 
  private:
+  struct Inputs;  // everything run() needs, read and checked from the flags and file
+
   bool given(const char* flag) const;
+  // All the checks of validate(); empty or the one-line reason to stop.
+  std::string read_inputs(Inputs* inputs) const;
 
   CLI::App* command_ = nullptr;
   SpinmapArgs args_;

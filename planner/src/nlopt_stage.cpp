@@ -17,6 +17,7 @@ nlopt_algorithm nlopt_global(GlobalMethod method) {
     case GlobalMethod::crs2: return NLOPT_GN_CRS2_LM;
     case GlobalMethod::mlsl: return NLOPT_G_MLSL_LDS;
     case GlobalMethod::isres: return NLOPT_GN_ISRES;
+    case GlobalMethod::ompl_kpiece1: break;  // not an NLopt method (ompl_stage.hpp)
   }
   return NLOPT_GN_CRS2_LM;
 }

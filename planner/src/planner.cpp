@@ -28,6 +28,7 @@
 
 #include "cueplan/planner/planner.hpp"
 #include "nlopt_stage.hpp"
+#include "ompl_stage.hpp"
 #include "outcome.hpp"
 #include "robustness.hpp"
 #include "search_space.hpp"
@@ -93,6 +94,7 @@ class NominalObjective {
         physics::simulate(problem_.scene, problem_.cue_ball, shot, simulation_);
     ++evaluations_;
     const double f = detail::shot_score(problem_, r, enforce_rigid_limit_);
+    last_ = {f, r.final_position, r.status == physics::ShotStatus::rest};
     if (f < best_.score) best_ = {shot, f};
     best_history_.push_back(best_.score);
     if (record_families_) {
@@ -104,6 +106,8 @@ class NominalObjective {
 
   int evaluations() const { return evaluations_; }
   const Candidate& best() const { return best_; }
+  // The stroke last scored: its score and where it stopped.
+  const detail::Landing& last() const { return last_; }
   // True when the best score has stopped falling toward `target` (see kHorizon).
   bool stalled(double target) const {
     const size_t n = best_history_.size();
@@ -122,6 +126,7 @@ class NominalObjective {
   int evaluations_ = 0;
   std::vector<double> best_history_;  // best score after each evaluation
   Candidate best_;
+  detail::Landing last_;
   std::map<FamilyKey, Candidate> families_;
 };
 
@@ -268,8 +273,9 @@ std::string PlannerOptions::validate() const {
     return format("%s %s, got %.10g", field, rule, value);
   };
   if (global != GlobalMethod::direct_l && global != GlobalMethod::crs2 &&
-      global != GlobalMethod::mlsl && global != GlobalMethod::isres)
-    return bad("global", "must be direct_l, crs2, mlsl or isres", static_cast<int>(global));
+      global != GlobalMethod::mlsl && global != GlobalMethod::isres &&
+      global != GlobalMethod::ompl_kpiece1)
+    return bad("global", "must be direct_l, crs2, mlsl, isres or ompl_kpiece1", static_cast<int>(global));
   if (local != LocalMethod::bobyqa && local != LocalMethod::sbplx &&
       local != LocalMethod::cobyla && local != LocalMethod::neldermead)
     return bad("local", "must be bobyqa, sbplx, cobyla or neldermead", static_cast<int>(local));
@@ -327,7 +333,21 @@ PlanResult plan(const problems::Problem& problem, const PlannerOptions& options)
   // 1. Global stage over the whole stroke space, remembering every family's best.
   const SearchSpace space(problem.limits);
   NominalObjective global(problem, space, search_sim, options.enforce_rigid_limit, true);
-  {
+  if (options.global == GlobalMethod::ompl_kpiece1) {
+    detail::LandingSearch s;
+    s.dimension = space.dimension();
+    s.aim_coordinate = problem.limits.aim.mode == problems::AimMode::free ? 1 : -1;
+    s.max_evaluations = std::max(1, static_cast<int>(options.global_share * options.max_evaluations));
+    s.max_time_s = std::max(1e-6, options.global_share * seconds_left());
+    s.goal_score = tol;  // a stroke in the zone: the polish takes it from there
+    s.table_length = problem.scene.length;
+    s.table_width = problem.scene.width;
+    s.seed = detail::stream_seed(options.seed, 0);
+    detail::explore_landings(s, [&global](const double* u) {
+      global(u);
+      return global.last();
+    });
+  } else {
     std::vector<double> x(static_cast<size_t>(space.dimension()), 0.5);
     StageSettings s;
     s.algorithm = detail::nlopt_global(options.global);

@@ -45,6 +45,7 @@ const char* to_string(GlobalMethod method) {
     case GlobalMethod::crs2: return "crs2";
     case GlobalMethod::mlsl: return "mlsl";
     case GlobalMethod::isres: return "isres";
+    case GlobalMethod::ompl_kpiece1: return "ompl_kpiece1";
   }
   return "unknown";
 }
@@ -71,7 +72,7 @@ const char* to_string(PlanStatus status) {
 
 bool parse_global_method(const std::string& name, GlobalMethod* method) {
   for (GlobalMethod m : {GlobalMethod::direct_l, GlobalMethod::crs2, GlobalMethod::mlsl,
-                         GlobalMethod::isres}) {
+                         GlobalMethod::isres, GlobalMethod::ompl_kpiece1}) {
     if (name == to_string(m)) {
       *method = m;
       return true;

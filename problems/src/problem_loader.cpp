@@ -1,5 +1,6 @@
 // Problem files into a Problem: each section read in the order the format lists them,
 // then the physics' own checks on the finished scene and positions (problems/README.md).
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <array>
@@ -213,12 +214,15 @@ Limits read_limits(const Mapping& root, FieldLines& lines) {
   return limits;
 }
 
+// The most strokes a route may take (max_strokes).
+constexpr int kMostStrokes = 100;
+
 // The stages of reading one problem, in order.
 Problem read_problem(const Field& document, const std::string& source) {
   FieldLines lines;
   const Mapping root(document,
                      {"name", "table", "ball", "physics", "cue_ball", "target", "tolerance",
-                      "obstacles", "limits"},
+                      "obstacles", "limits", "max_strokes", "time_budget_s"},
                      lines);
   Problem problem;
   problem.source = source;
@@ -238,6 +242,10 @@ Problem read_problem(const Field& document, const std::string& source) {
   if (const std::optional<Field> f = root.find("tolerance"))
     problem.tolerance = detail::positive_number(*f);
   problem.limits = read_limits(root, lines);
+  if (const std::optional<Field> f = root.find("max_strokes"))
+    problem.max_strokes = detail::whole_number(*f, 1, kMostStrokes);
+  if (const std::optional<Field> f = root.find("time_budget_s"))
+    problem.time_budget_s = detail::positive_number(*f);
   return problem;
 }
 
@@ -250,18 +258,63 @@ std::string located(const std::string& source, int line, const std::string& fiel
 
 LoadResult failure(std::string error) { return {std::nullopt, std::move(error)}; }
 
+// Where the first node of a YAML document starts; the rest of the events are ignored.
+class FirstNodeLine : public YAML::EventHandler {
+ public:
+  int line() const { return line_; }
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { see(mark); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { see(mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    see(mark);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    see(mark);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    see(mark);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void see(const YAML::Mark& mark) {
+    if (line_ == 0) line_ = mark.is_null() ? 1 : mark.line + 1;
+  }
+  int line_ = 0;
+};
+
+// The line at which a second YAML document starts in `text`, or 0 when there is none.
+// Throws YAML exceptions for syntax errors in the first two documents. (YAML::LoadAll
+// is not used: yaml-cpp 0.7 can loop forever in it on malformed text, jbeder/yaml-cpp
+// pull request 1319; here the parser is asked for two documents at most.)
+int second_document_line(const std::string& text) {
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  FirstNodeLine first;
+  if (!parser.HandleNextDocument(first)) return 0;
+  FirstNodeLine second;
+  if (!parser.HandleNextDocument(second)) return 0;
+  return second.line() > 0 ? second.line() : 1;
+}
+
 }  // namespace
 
 LoadResult parse_problem(const std::string& yaml_text, const std::string& source_name) {
   try {
-    const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
-    if (documents.empty() || documents.front().IsNull())
+    const int second_line = second_document_line(yaml_text);
+    const YAML::Node root = YAML::Load(yaml_text);
+    if (root.IsNull())
       return failure(located(source_name, 1, kDocument,
                              "is empty; a problem needs at least cue_ball and target"));
-    if (documents.size() > 1)
-      return failure(located(source_name, detail::line_of(documents[1]), kDocument,
+    if (second_line > 0)
+      return failure(located(source_name, second_line, kDocument,
                              "holds a second YAML document; one problem per file"));
-    const YAML::Node& root = documents.front();
     const int line = detail::line_of(root) > 0 ? detail::line_of(root) : 1;
     if (!root.IsMap())
       return failure(located(source_name, line, kDocument,
@@ -273,11 +326,11 @@ LoadResult parse_problem(const std::string& yaml_text, const std::string& source
   } catch (const YAML::Exception& e) {
     // Syntax errors: yaml-cpp counts lines and columns from 0.
     const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    std::string message = e.msg;
+    std::string message = detail::printable(e.msg);
     if (!e.mark.is_null()) message += " (column " + std::to_string(e.mark.column + 1) + ")";
     return failure(located(source_name, line, "yaml", message));
   } catch (const std::exception& e) {
-    return failure(source_name + ": cannot be read: " + e.what());
+    return failure(source_name + ": cannot be read: " + detail::printable(e.what()));
   } catch (...) {
     return failure(source_name + ": cannot be read: unknown error");
   }

@@ -54,6 +54,14 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+// A key the format could name: letters, digits and underscores, as every field is.
+bool plain_word(std::string_view key) {
+  if (key.empty()) return false;
+  return std::all_of(key.begin(), key.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+}
+
 std::string format_number(double value) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.10g", value);
@@ -79,9 +87,39 @@ std::string describe_value(const YAML::Node& node) {
     case YAML::NodeType::Map: return "a mapping";
     case YAML::NodeType::Scalar: break;
   }
-  std::string shown = node.Scalar();
-  if (shown.size() > 40) shown = shown.substr(0, 37) + "...";
-  return (node.Tag() == "!" ? "the quoted string \"" : "\"") + shown + "\"";
+  return (node.Tag() == "!" ? "the quoted string " : "") + shown_text(node.Scalar());
+}
+
+std::string printable(std::string_view text) {
+  std::string shown;
+  shown.reserve(text.size());
+  for (const char ch : text) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c == '\n') {
+      shown += "\\n";
+    } else if (c == '\t') {
+      shown += "\\t";
+    } else if (c < 0x20 || c == 0x7f) {
+      char code[8];
+      std::snprintf(code, sizeof code, "\\x%02x", static_cast<unsigned>(c));
+      shown += code;
+    } else {
+      shown += ch;
+    }
+  }
+  return shown;
+}
+
+std::string shown_text(std::string_view text) {
+  constexpr std::size_t kLongest = 40;
+  std::string shown = "\"";
+  for (const char c : text.substr(0, kLongest)) {
+    if (c == '"' || c == '\\') shown += '\\';
+    shown += c;
+  }
+  shown = printable(shown);
+  if (text.size() > kLongest) shown += "...";
+  return shown + "\"";
 }
 
 Mapping::Mapping(const Field& mapping, std::initializer_list<std::string_view> allowed,
@@ -97,6 +135,11 @@ Mapping::Mapping(const Field& mapping, std::initializer_list<std::string_view> a
       fail({key, path_.empty() ? "(document)" : path_, key_line},
            "has a key that is " + describe_value(key) + "; keys are plain words");
     const std::string name = key.Scalar();
+    // Only a plain word can be a field's name; anything else is named by its mapping.
+    if (!plain_word(name))
+      fail({key, path_.empty() ? "(document)" : path_, key_line},
+           "has the key " + shown_text(name) + "; keys are plain words such as " +
+               std::string(*allowed.begin()));
     // A block value starts on a later line (and an empty one wherever the next token
     // is): the key's line is where the field is.
     Field field{value, child_path(name), key_line};

@@ -76,6 +76,11 @@ std::vector<Field> sequence(const Field& field, std::size_t size, std::string_vi
 physics::Vec2 point(const Field& field);
 // What a node holds, for messages: "a mapping", "the quoted string \"0.5\"", ...
 std::string describe_value(const YAML::Node& node);
+// Text with its control characters escaped (\n, \t, \xNN), fit for a one-line message.
+std::string printable(std::string_view text);
+// Text from the file, quoted for a one-line message: control characters escaped, long
+// text cut short.
+std::string shown_text(std::string_view text);
 
 [[noreturn]] void fail(const Field& field, std::string message);
 

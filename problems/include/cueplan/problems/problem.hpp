@@ -51,6 +51,11 @@ struct Problem {
   physics::Vec2 target;    // m, where the cue ball should come to rest; checked likewise
   double tolerance = kDefaultTolerance;  // m, radius of the landing zone; > 0
   Limits limits;
+  // For a route of several strokes (planner/route.hpp, `cueplan route`): the most
+  // strokes allowed (a whole number in [1, 100]) and the planning time budget (s, > 0).
+  // Empty when the file leaves them out; commands then use their own defaults.
+  std::optional<int> max_strokes;
+  std::optional<double> time_budget_s;
 };
 
 // Either a problem or one line saying what is wrong, never both.

@@ -1,0 +1,342 @@
+#include "route_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <vector>
+
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/route.hpp"
+#include "cueplan/problems/problem.hpp"
+#include "exit_codes.hpp"
+#include "output_file.hpp"
+#include "planner_flags.hpp"
+#include "shot_report.hpp"
+#include "shot_words.hpp"
+#include "table_drawing.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+namespace plan = cueplan::planner;
+namespace prob = cueplan::problems;
+using nlohmann::ordered_json;
+
+constexpr const char* kCommandName = "cueplan route";
+constexpr int kDefaultMaxStrokes = 3;
+constexpr double kDefaultTimeS = 5.0;
+
+std::string position_text(phys::Vec2 p) {
+  return "x = " + number(p.x, "m") + ", y = " + number(p.y, "m");
+}
+
+std::string strokes_text(int n) { return std::to_string(n) + (n == 1 ? " stroke" : " strokes"); }
+
+std::string success_text(const plan::RouteOptions& o, const plan::RouteStroke& s, bool last) {
+  if (o.robustness_samples == 0) return "not estimated (--samples 0)";
+  return fixed("%.1f %%", 100.0 * s.planned.success_probability) + " of " +
+         std::to_string(o.robustness_samples) + " noisy strokes stop " +
+         (last ? "in the target zone (within " + number(1000.0 * s.zone_radius, "mm") +
+                     " of the target)"
+               : "within " + number(1000.0 * s.zone_radius, "mm") + " of this landing");
+}
+
+// ---------------------------------------------------------------------------
+// Text
+
+void write_text(std::ostream& out, const prob::Problem& problem, const plan::RouteOptions& o,
+                const plan::RouteResult& r, const std::string& svg_file) {
+  const auto line = [&](const std::string& label, const std::string& text) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%-16s", label.c_str());
+    out << buf << text << '\n';
+  };
+  line("problem", problem.name + "  (" + problem.source + ")");
+  line("status", plan::to_string(r.status));
+  line("summary", r.message);
+  line("start", position_text(problem.cue_ball));
+  line("target", position_text(problem.target) + ", tolerance " + number(problem.tolerance, "m"));
+  line("strokes", std::to_string(r.strokes.size()) + " (at most " + std::to_string(o.max_strokes) +
+                      ")");
+  for (size_t i = 0; i < r.strokes.size(); ++i) {
+    const plan::RouteStroke& s = r.strokes[i];
+    const phys::Shot& shot = s.planned.shot;
+    const bool last = i + 1 == r.strokes.size();
+    line("stroke " + std::to_string(i + 1),
+         plan::describe_stroke(shot) + ", aim " + number(shot.aim_deg, "deg"));
+    line("    shot", "V = " + number(shot.speed, "m/s") + " at aim " + number(shot.aim_deg, "deg") +
+                         ", k_T = " + number(shot.topspin_k) + ", k_S = " + number(shot.sidespin_k));
+    line("    from", position_text(s.start));
+    line("    landing", landing_text(s.planned));
+    line("    cushions", route_text(problem.scene, s.planned.route));
+    if (last)
+      line("    miss", fixed("%.3g mm", 1000.0 * s.planned.miss_distance) + " from the target");
+    line("    success", success_text(o, s, last));
+  }
+  if (r.status == plan::RouteStatus::solved && o.robustness_samples > 0)
+    line("route success",
+         fixed("%.1f %%", 100.0 * r.route_success_probability) +
+             " (product of the strokes' success probabilities; noise: " + noise_text(o.noise) + ")");
+  line("time", fixed("%.3g s", r.time_s) +
+                   (r.time_to_first_solution_s >= 0.0
+                        ? " (first route after " + fixed("%.3g s", r.time_to_first_solution_s) + ")"
+                        : std::string()));
+  line("search", std::string(plan::to_string(o.planner)) + " with the " +
+                     plan::to_string(o.sampler) + " sampler; " + std::to_string(r.propagations) +
+                     " strokes propagated, " + std::to_string(r.steerings) + " steerings, " +
+                     std::to_string(r.evaluations) + " shot simulations, " +
+                     std::to_string(r.tree_states) + " states in the tree; budget " +
+                     number(o.max_time_s, "s") + (o.stop_at_first_solution ? " (first route)" : "") +
+                     "; seed " + std::to_string(o.seed));
+  if (!svg_file.empty()) line("drawing", svg_file);
+}
+
+// ---------------------------------------------------------------------------
+// JSON
+
+void write_json(std::ostream& out, const prob::Problem& problem, const plan::RouteOptions& o,
+                const plan::RouteResult& r, const std::string& svg_file) {
+  ordered_json j;
+  j["problem"] = {{"name", problem.name}, {"source", problem.source}};
+  j["status"] = plan::to_string(r.status);
+  j["message"] = r.message;
+  ordered_json strokes = ordered_json::array();
+  for (const plan::RouteStroke& s : r.strokes) {
+    ordered_json stroke;
+    stroke["start"] = point_json(s.start);
+    const ordered_json shot = planned_json(problem, s.planned, false);
+    for (const auto& [key, value] : shot.items()) stroke[key] = value;
+    stroke["zone"] = {{"centre", point_json(s.zone_centre)}, {"radius", s.zone_radius}};
+    strokes.push_back(stroke);
+  }
+  j["strokes"] = strokes;
+  j["route_success_probability"] = r.route_success_probability;
+  j["time_s"] = r.time_s;
+  j["time_to_first_solution_s"] =
+      r.time_to_first_solution_s >= 0.0 ? ordered_json(r.time_to_first_solution_s) : ordered_json();
+  j["propagations"] = r.propagations;
+  j["steerings"] = r.steerings;
+  j["evaluations"] = r.evaluations;
+  j["tree_states"] = r.tree_states;
+  j["cue_ball"] = point_json(problem.cue_ball);
+  j["target"] = point_json(problem.target);
+  j["tolerance"] = problem.tolerance;
+  j["options"] = {{"planner", plan::to_string(o.planner)},
+                  {"sampler", plan::to_string(o.sampler)},
+                  {"max_strokes", o.max_strokes},
+                  {"max_time_s", o.max_time_s},
+                  {"first", o.stop_at_first_solution},
+                  {"seed", o.seed},
+                  {"steer_evaluations", o.steer_evaluations},
+                  {"noise",
+                   {{"scale", o.noise.scale},
+                    {"aim_deg", o.noise.aim_deg},
+                    {"speed", o.noise.speed},
+                    {"tip_offset", o.noise.tip_offset}}},
+                  {"samples", o.robustness_samples},
+                  {"intermediate_zone_m", o.intermediate_zone_m}};
+  if (!svg_file.empty()) j["svg"] = svg_file;
+  j["units"] = {{"frame",
+                 "table: origin where the cushion noses x = 0 and y = 0 meet, x along the "
+                 "length, y along the width"},
+                {"start", "m"},
+                {"final_position", "m"},
+                {"miss_distance", "m from the problem's target"},
+                {"zone", "m: the circle each stroke's success_probability is judged by"},
+                {"speed", "m/s"},
+                {"aim_deg", "deg from +x, counter-clockwise"},
+                {"success_probability", "fraction of noisy strokes, 0..1"},
+                {"time_s", "s"}};
+  out << j.dump(2) << '\n';
+}
+
+// ---------------------------------------------------------------------------
+// SVG: every stroke's path in order.
+
+TableDrawing drawing_of(const prob::Problem& problem, const plan::RouteOptions& o,
+                        const plan::RouteResult& r) {
+  TableDrawing d;
+  d.scene = problem.scene;
+  d.cue_ball = problem.cue_ball;
+  d.target = TargetZone{problem.target, problem.tolerance};
+  phys::SimulationOptions exact;  // as the route was verified: exact, 1e-9
+  exact.record_path = true;
+  for (const plan::RouteStroke& s : r.strokes) {
+    const phys::ShotResult sim = phys::simulate(problem.scene, s.start, s.planned.shot, exact);
+    d.paths.push_back({sim.path, sim.events, false});
+  }
+  d.title = problem.name + ": " +
+            (r.status == plan::RouteStatus::solved ? "route of " + strokes_text(static_cast<int>(r.strokes.size()))
+                                                   : std::string(plan::to_string(r.status)));
+  for (size_t i = 0; i < r.strokes.size(); ++i) {
+    const phys::Shot& s = r.strokes[i].planned.shot;
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%zu. V = %.3g m/s, aim %.4g\u00b0, k_{T} = %.3g, k_{S} = %.3g",
+                  i + 1, s.speed, s.aim_deg, s.topspin_k, s.sidespin_k);
+    std::string text = buf;
+    if (o.robustness_samples > 0)
+      text += "; " + fixed("%.0f %%", 100.0 * r.strokes[i].planned.success_probability) +
+              " of noisy strokes succeed";
+    d.caption.push_back(text + ".");
+  }
+  if (r.strokes.empty()) d.caption.push_back(r.message);
+  else if (r.strokes.size() > 1)
+    d.caption.push_back("Each stroke starts where the one before it stops (the at-rest marks).");
+  return d;
+}
+
+}  // namespace
+
+RouteCommand::RouteCommand(CLI::App& parent) {
+  command_ = parent.add_subcommand(
+      "route",
+      "Plan a short sequence of strokes that leaves the cue ball on a problem's target when "
+      "one stroke cannot (blocked lines, a speed limit, fragile single strokes), on OMPL's "
+      "kinodynamic planners, and report each stroke in a player's terms.");
+  CLI::App& c = *command_;
+  c.add_option("PROBLEM", args_.problem_file,
+               "Problem file (YAML, problems/README.md): table, cue ball, target, limits; may "
+               "set max_strokes and time_budget_s")
+      ->required()
+      ->type_name("FILE.yaml");
+  const char* search = "Search";
+  c.add_option("--max-strokes", args_.max_strokes,
+               "Most strokes in the route, 1-100 (default: the file's max_strokes, else 3)")
+      ->type_name("K")
+      ->group(search);
+  c.add_option("--time", args_.time_s,
+               "Search budget in seconds (default: the file's time_budget_s, else 5). SST "
+               "keeps improving its route until the budget ends unless --first is given")
+      ->type_name("SECONDS")
+      ->group(search);
+  c.add_option("--planner", args_.planner, "OMPL control planner: sst, rrt or kpiece1")
+      ->type_name("NAME")
+      ->capture_default_str()
+      ->group(search);
+  c.add_option("--sampler", args_.sampler,
+               "How strokes are chosen: directed (each stroke steers toward a sampled point "
+               "through the one-stroke planner) or random (uniform strokes within the limits)")
+      ->type_name("NAME")
+      ->capture_default_str()
+      ->group(search);
+  c.add_flag("--first", args_.first, "Stop at the first route found (SST; RRT and KPIECE1 always do)")
+      ->group(search);
+  c.add_option("--seed", args_.seed, "Seed of every random choice")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(search);
+  c.add_option("--steer-evaluations", args_.steer_evaluations,
+               "Shot simulations per directed steering, >= 10")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(search);
+  c.add_option("--noise", args_.noise,
+               "Scale of the player's execution noise (Gaussian: aim 0.125 deg, speed 0.075 m/s, "
+               "tip offset 0.5 mm each way, times this), >= 0; 0 is a perfect cue")
+      ->type_name("X")
+      ->capture_default_str()
+      ->group(search);
+  c.add_option("--samples", args_.samples,
+               "Noisy strokes per reported success probability (0: not estimated)")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(search);
+  const char* output = "Output";
+  c.add_flag("--json", args_.json,
+             "Print one JSON object instead of text: status, message, strokes (each like solve's "
+             "shot, with start and final_position in m and success_probability), time_s, ...")
+      ->group(output);
+  c.add_option("--svg", args_.svg_file,
+               "Also draw the route as an SVG file: the table, the target zone and every "
+               "stroke's path")
+      ->type_name("FILE.svg")
+      ->group(output);
+  c.footer(
+      "Status: solved (exit 0); unreachable - proven: obstacle balls or pockets wall the "
+      "target off - or budget_exhausted - no route within the budget (exit 1); bad input "
+      "exits 2.\n"
+      "Example: cueplan route problems/routes/two_stroke_blocked.yaml --max-strokes 2 --svg "
+      "route.svg");
+}
+
+bool RouteCommand::selected() const { return command_->parsed(); }
+
+int RouteCommand::read(std::ostream& err, prob::Problem* problem_out,
+                       plan::RouteOptions* options) const {
+  const auto usage = [&](const std::string& why) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  };
+  plan::RouteOptions& o = *options;
+  if (!plan::parse_route_planner(args_.planner, &o.planner))
+    return usage("--planner must be sst, rrt or kpiece1, got '" + args_.planner + "'");
+  if (!plan::parse_route_sampler(args_.sampler, &o.sampler))
+    return usage("--sampler must be directed or random, got '" + args_.sampler + "'");
+  if (command_->count("--max-strokes") > 0 && (args_.max_strokes < 1 || args_.max_strokes > 100))
+    return usage("--max-strokes must lie in [1, 100], got " + std::to_string(args_.max_strokes));
+  if (command_->count("--time") > 0 && !(std::isfinite(args_.time_s) && args_.time_s > 0.0))
+    return usage("--time must be positive and finite (s), got " + number(args_.time_s));
+  if (!std::isfinite(args_.noise) || args_.noise < 0.0)
+    return usage("--noise must be finite and not negative, got " + number(args_.noise));
+  if (args_.samples < 0) return usage("--samples must not be negative, got " + std::to_string(args_.samples));
+  if (args_.steer_evaluations < 10)
+    return usage("--steer-evaluations must be at least 10, got " +
+                 std::to_string(args_.steer_evaluations));
+  if (!args_.svg_file.empty())
+    if (std::string why = check_output_file(args_.svg_file); !why.empty())
+      return usage("--svg: " + why);
+  const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
+  if (!loaded.ok()) return usage(loaded.error);
+  const prob::Problem& problem = *loaded.problem;
+
+  o.max_strokes = command_->count("--max-strokes") > 0 ? args_.max_strokes
+                  : problem.max_strokes                ? *problem.max_strokes
+                                                       : kDefaultMaxStrokes;
+  o.max_time_s = command_->count("--time") > 0 ? args_.time_s
+                 : problem.time_budget_s        ? *problem.time_budget_s
+                                                : kDefaultTimeS;
+  o.stop_at_first_solution = args_.first;
+  o.seed = args_.seed;
+  o.noise.scale = args_.noise;
+  o.robustness_samples = args_.samples;
+  o.steer_evaluations = args_.steer_evaluations;
+  if (std::string why = o.validate(); !why.empty()) return usage(why);
+  *problem_out = problem;
+  return kExitOk;
+}
+
+int RouteCommand::validate(std::ostream& err) const {
+  prob::Problem problem;
+  plan::RouteOptions o;
+  return read(err, &problem, &o);
+}
+
+int RouteCommand::run(std::ostream& out, std::ostream& err) const {
+  const auto usage = [&](const std::string& why) {
+    err << kCommandName << ": " << why << '\n';
+    return kExitUsage;
+  };
+  prob::Problem problem;
+  plan::RouteOptions o;
+  if (const int code = read(err, &problem, &o); code != kExitOk) return code;
+
+  const plan::RouteResult result = plan::plan_route(problem, o);
+  if (result.status == plan::RouteStatus::invalid_input) return usage(result.message);
+
+  if (!args_.svg_file.empty()) {
+    const std::string svg = render_table_svg(drawing_of(problem, o, result));
+    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+      return usage("--svg: " + why);
+  }
+  if (args_.json)
+    write_json(out, problem, o, result, args_.svg_file);
+  else
+    write_text(out, problem, o, result, args_.svg_file);
+  if (!out) return kExitFailed;
+  return result.status == plan::RouteStatus::solved ? kExitOk : kExitFailed;
+}
+
+}  // namespace cueplan::cli

@@ -1,0 +1,134 @@
+#include "shot_report.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shot_words.hpp"
+
+namespace cueplan::cli {
+
+namespace phys = cueplan::physics;
+namespace plan = cueplan::planner;
+namespace prob = cueplan::problems;
+using nlohmann::ordered_json;
+
+namespace {
+
+// An aim the problem allows, to judge the other limits on their own.
+double allowed_aim(const prob::Limits& limits, double aim_deg) {
+  return limits.aim.mode == prob::AimMode::free ? aim_deg : limits.aim.lo_deg;
+}
+
+}  // namespace
+
+std::vector<ConstraintRow> constraints(const prob::Problem& problem, const plan::PlannedShot& p,
+                                       bool enforce_rigid_limit) {
+  const prob::Limits& l = problem.limits;
+  const phys::Shot& s = p.shot;
+  const double aim = allowed_aim(l, s.aim_deg);
+  std::vector<ConstraintRow> rows;
+  const auto row = [&](const char* name, bool ok, std::string detail) {
+    rows.push_back({name, name, ok ? "ok" : "broken", std::move(detail)});
+  };
+
+  const std::string speed = prob::check_shot(l, {s.speed, aim, 0.0, 0.0});
+  row("speed", speed.empty(),
+      speed.empty() ? number(s.speed, "m/s") + " within [" + number(l.speed_min) + ", " +
+                          number(l.speed_max) + "] m/s"
+                    : speed);
+  const std::string spin = prob::check_shot(l, {l.speed_min, aim, s.topspin_k, s.sidespin_k});
+  row("spin", spin.empty(),
+      spin.empty() ? "sqrt(k_T^2 + k_S^2) = " + number(std::hypot(s.topspin_k, s.sidespin_k)) +
+                         " within " + number(l.spin_max)
+                   : spin);
+  const std::string aim_check = prob::check_shot(l, {l.speed_min, s.aim_deg, 0.0, 0.0});
+  std::string aim_detail = aim_check;
+  if (aim_check.empty())
+    aim_detail = l.aim.mode == prob::AimMode::free
+                     ? number(s.aim_deg, "deg") + " (any aim allowed)"
+                     : number(s.aim_deg, "deg") + " within [" + number(l.aim.lo_deg) + ", " +
+                           number(l.aim.hi_deg) + "] deg";
+  row("aim", aim_check.empty(), aim_detail);
+  const bool cushions_ok = p.cushion_hits >= l.cushions_min && p.cushion_hits <= l.cushions_max;
+  row("cushions", cushions_ok,
+      std::to_string(p.cushion_hits) + " (the problem allows " + cushions_allowed(l) + ")");
+  const bool pocketed = p.outcome == phys::ShotStatus::pocketed;
+  row("pocket", !pocketed, pocketed ? "the cue ball is pocketed" : "not pocketed");
+  const bool touched = p.outcome == phys::ShotStatus::hit_obstacle;
+  row("obstacle", !touched,
+      touched                           ? "the cue ball touches an obstacle ball"
+      : problem.scene.obstacles.empty() ? "no obstacle balls on this table"
+                                        : "clears every obstacle ball");
+
+  const double limit = problem.scene.ball_and_cushion.rigid_speed_limit;
+  std::string rigid = "max cushion normal speed " + number(p.max_cushion_normal_speed, "m/s");
+  if (!p.rigid_limit_exceeded) {
+    rows.push_back({"rigid limit", "rigid_limit", "ok", rigid + ", below " + number(limit, "m/s")});
+  } else if (enforce_rigid_limit) {
+    rows.push_back(
+        {"rigid limit", "rigid_limit", "broken",
+         rigid + ", above " + number(limit, "m/s") + " (enforced by --enforce-rigid-limit)"});
+  } else {
+    rows.push_back({"rigid limit", "rigid_limit", "flagged",
+                    rigid + ", above " + number(limit, "m/s") +
+                        ": the rigid-cushion model is not trusted there (--enforce-rigid-limit "
+                        "rejects such strokes)"});
+  }
+  return rows;
+}
+
+std::string landing_text(const plan::PlannedShot& p) {
+  switch (p.outcome) {
+    case phys::ShotStatus::rest:
+      return "x = " + number(p.final_position.x, "m") + ", y = " + number(p.final_position.y, "m");
+    case phys::ShotStatus::pocketed:
+      return "none: pocketed at x = " + number(p.final_position.x, "m") +
+             ", y = " + number(p.final_position.y, "m");
+    case phys::ShotStatus::hit_obstacle:
+      return "none: stopped against an obstacle ball at x = " + number(p.final_position.x, "m") +
+             ", y = " + number(p.final_position.y, "m");
+    default:
+      return std::string("none: ") + phys::to_string(p.outcome);
+  }
+}
+
+ordered_json point_json(phys::Vec2 v) { return {v.x, v.y}; }
+
+ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot& p,
+                          bool enforce_rigid_limit) {
+  ordered_json j;
+  j["shot"] = {{"speed", p.shot.speed},
+               {"aim_deg", p.shot.aim_deg},
+               {"topspin_k", p.shot.topspin_k},
+               {"sidespin_k", p.shot.sidespin_k}};
+  const plan::TipOffset t = plan::tip_offset(p.shot);
+  j["tip_offset"] = {{"right", t.right}, {"up", t.up}};
+  j["stroke"] = plan::describe_stroke(p.shot);
+  j["outcome"] = phys::to_string(p.outcome);
+  j["final_position"] = point_json(p.final_position);
+  // null when the ball did not come to rest on the table (JSON has no infinity)
+  j["miss_distance"] =
+      std::isfinite(p.miss_distance) ? ordered_json(p.miss_distance) : ordered_json();
+  j["success_probability"] = p.success_probability;
+  j["solves"] = p.solves;
+  j["cushion_hits"] = p.cushion_hits;
+  j["route"] = p.route;
+  ordered_json names = ordered_json::array();
+  for (int c : p.route) names.push_back(cushion_name(problem.scene, c));
+  j["route_names"] = names;
+  j["family"] = p.family;
+  j["within_limits"] = p.within_limits;
+  j["violations"] = p.violations;
+  ordered_json rows = ordered_json::object();
+  for (const ConstraintRow& c : constraints(problem, p, enforce_rigid_limit))
+    rows[c.key] = {{"state", c.state}, {"detail", c.detail}};
+  j["constraints"] = rows;
+  j["max_cushion_normal_speed"] = p.max_cushion_normal_speed;
+  j["rigid_limit_exceeded"] = p.rigid_limit_exceeded;
+  j["impact_method"] = phys::to_string(p.impact_method);
+  return j;
+}
+
+}  // namespace cueplan::cli

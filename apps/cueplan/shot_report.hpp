@@ -1,0 +1,42 @@
+// How the command line reports one planned stroke: its constraints one by one, where it
+// lands, and its JSON object. Shared by `cueplan solve` (the best shot and its
+// alternatives) and `cueplan route` (each stroke of a route).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/shot.hpp"
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/problems/problem.hpp"
+
+namespace cueplan::cli {
+
+// One constraint of the problem and whether the stroke meets it.
+struct ConstraintRow {
+  const char* name;   // speed, spin, aim, cushions, pocket, obstacle, rigid limit
+  const char* key;    // the same as a JSON key: ..., rigid_limit
+  const char* state;  // "ok", "broken" or "flagged" (rigid limit, not enforced)
+  std::string detail;
+};
+
+// Every constraint of `problem` on the stroke `p`, each on its own row.
+std::vector<ConstraintRow> constraints(const problems::Problem& problem,
+                                       const planner::PlannedShot& p, bool enforce_rigid_limit);
+
+// Where the stroke stops, in words with units: "x = 1.2 m, y = 0.4 m", or why it does not.
+std::string landing_text(const planner::PlannedShot& p);
+
+// [x, y] in m.
+nlohmann::ordered_json point_json(physics::Vec2 v);
+
+// The stroke as `cueplan solve --json` reports a shot: shot {speed, aim_deg, topspin_k,
+// sidespin_k}, tip_offset, stroke, outcome, final_position, miss_distance (null unless at
+// rest), success_probability, solves, cushion_hits, route, route_names, family,
+// within_limits, violations, constraints, max_cushion_normal_speed, rigid_limit_exceeded,
+// impact_method.
+nlohmann::ordered_json planned_json(const problems::Problem& problem,
+                                    const planner::PlannedShot& p, bool enforce_rigid_limit);
+
+}  // namespace cueplan::cli
