@@ -2,10 +2,10 @@
 // threading between balls, in a scene where most nearby strokes do not.
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <string>
 
 #include "cueplan/planner/planner.hpp"
+#include "generated_problems.hpp"
 #include "robustness.hpp"
 #include "search_space.hpp"
 
@@ -13,9 +13,8 @@ namespace cueplan::planner {
 
 std::vector<KnownShotProblem> obstacle_field_problems(int count, int obstacles, uint64_t seed,
                                                       const physics::SimulationOptions& simulation) {
-  constexpr double kSpeedMin = 0.3, kSpeedMax = 3.0;  // m/s
-  constexpr int kMaxCushions = 3;
-  constexpr double kMargin = 0.1;      // m, balls kept this far inside the cushion noses
+  constexpr double kSpeedMin = detail::kGeneratedSpeedMin, kSpeedMax = detail::kGeneratedSpeedMax;
+  constexpr double kMargin = detail::kGeneratedMargin;
   constexpr double kBallGap = 0.01;    // m, free space kept between any two balls
   constexpr int kNearStrokes = 32;     // strokes near the witness, to judge the gap
   constexpr double kNearAimDeg = 3.0, kNearSpeed = 0.15, kNearSpin = 0.3;
@@ -23,16 +22,10 @@ std::vector<KnownShotProblem> obstacle_field_problems(int count, int obstacles, 
   std::vector<KnownShotProblem> out;
   if (count <= 0) return out;
   obstacles = std::clamp(obstacles, 1, 30);
-  std::mt19937_64 rng(detail::stream_seed(seed, 0x6669656c64ULL));  // "field"
-  auto uniform = [&](double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(rng() >> 11) * 0x1.0p-53);
-  };
+  detail::UniformStream uniform(detail::stream_seed(seed, 0x6669656c64ULL));  // "field"
   physics::SimulationOptions sim = simulation;
   sim.record_path = false;
-  problems::Problem base;
-  base.scene = physics::snooker_scene();
-  base.source = "<generated>";
-  base.tolerance = problems::kDefaultTolerance;
+  const problems::Problem base = detail::generated_base();
   const double clearance = 2.0 * base.scene.radius() + kBallGap;
   // A free spot for a ball: inside the margin, out of the pockets, clear of the others.
   auto free_spot = [&](const physics::Scene& scene, physics::Vec2* spot) {
@@ -59,16 +52,9 @@ std::vector<KnownShotProblem> obstacle_field_problems(int count, int obstacles, 
       if (placed) p.scene.obstacles.push_back(spot);
     }
     if (!placed || !free_spot(p.scene, &p.cue_ball)) continue;
-    physics::Shot shot;
-    shot.speed = uniform(kSpeedMin, kSpeedMax);
-    shot.aim_deg = uniform(-180.0, 180.0);
-    double side, top;  // uniform over the spin disc
-    detail::square_to_disc(uniform(-1.0, 1.0), uniform(-1.0, 1.0), &side, &top);
-    shot.sidespin_k = p.limits.spin_max * side;
-    shot.topspin_k = p.limits.spin_max * top;
+    const physics::Shot shot = detail::random_stroke(uniform, p.limits.spin_max);
     const physics::ShotResult r = physics::simulate(p.scene, p.cue_ball, shot, sim);
-    if (r.status != physics::ShotStatus::rest || r.cushion_hits > kMaxCushions) continue;
-    if (!p.scene.check_position(r.final_position, "target").empty()) continue;
+    if (!detail::take_landing_as_target(r, &p)) continue;
     // Keep the scene only when the witness threads a narrow gap.
     int blocked = 0;
     for (int i = 0; i < kNearStrokes; ++i) {
@@ -85,8 +71,6 @@ std::vector<KnownShotProblem> obstacle_field_problems(int count, int obstacles, 
       if (ended_on_ball_or_pocket(physics::simulate(p.scene, p.cue_ball, near, sim))) ++blocked;
     }
     if (blocked < kMinBlocked * kNearStrokes) continue;
-    p.target = r.final_position;
-    p.limits.cushions_min = p.limits.cushions_max = r.cushion_hits;
     p.name = "obstacle field " + std::to_string(out.size() + 1);
     out.push_back({std::move(p), shot});
   }
