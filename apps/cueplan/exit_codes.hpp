@@ -1,6 +1,9 @@
 // Exit codes shared by every cueplan subcommand.
 #pragma once
 
+#include <ostream>
+#include <string_view>
+
 namespace cueplan::cli {
 
 enum ExitCode : int {
@@ -8,5 +11,11 @@ enum ExitCode : int {
   kExitFailed = 1,  // the input was fine but the physics could not give a usable answer
   kExitUsage = 2,   // bad command line or input file; one line on stderr says which
 };
+
+// Prints the one usage line "COMMAND: WHY" and returns kExitUsage.
+inline int usage_error(std::ostream& err, std::string_view command, std::string_view why) {
+  err << command << ": " << why << '\n';
+  return kExitUsage;
+}
 
 }  // namespace cueplan::cli

@@ -326,18 +326,12 @@ std::string FiguresCommand::check_flags() const {
 }
 
 int FiguresCommand::validate(std::ostream& err) const {
-  if (std::string why = check_flags(); !why.empty()) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  }
-  return kExitOk;
+  const std::string why = check_flags();
+  return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
 }
 
 int FiguresCommand::run(std::ostream& out, std::ostream& err) const {
-  const auto usage = [&](const std::string& why) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  };
+  const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
   if (std::string why = check_flags(); !why.empty()) return usage(why);
   const double step = args_.alpha_step_deg;
   const std::filesystem::path dir = args_.out_dir;

@@ -266,10 +266,7 @@ bool RouteCommand::selected() const { return command_->parsed(); }
 
 int RouteCommand::read(std::ostream& err, prob::Problem* problem_out,
                        plan::RouteOptions* options) const {
-  const auto usage = [&](const std::string& why) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  };
+  const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
   plan::RouteOptions& o = *options;
   if (!plan::parse_route_planner(args_.planner, &o.planner))
     return usage("--planner must be sst, rrt or kpiece1, got '" + args_.planner + "'");
@@ -315,10 +312,7 @@ int RouteCommand::validate(std::ostream& err) const {
 }
 
 int RouteCommand::run(std::ostream& out, std::ostream& err) const {
-  const auto usage = [&](const std::string& why) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  };
+  const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
   prob::Problem problem;
   plan::RouteOptions o;
   if (const int code = read(err, &problem, &o); code != kExitOk) return code;

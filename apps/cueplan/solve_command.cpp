@@ -320,18 +320,12 @@ std::string SolveCommand::read_inputs(Inputs* inputs) const {
 
 int SolveCommand::validate(std::ostream& err) const {
   Inputs inputs;
-  if (std::string why = read_inputs(&inputs); !why.empty()) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  }
-  return kExitOk;
+  const std::string why = read_inputs(&inputs);
+  return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
 }
 
 int SolveCommand::run(std::ostream& out, std::ostream& err) const {
-  const auto usage = [&](const std::string& why) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  };
+  const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
 
   Inputs inputs;
   if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);

@@ -421,18 +421,12 @@ std::string SpinmapCommand::read_inputs(Inputs* inputs) const {
 
 int SpinmapCommand::validate(std::ostream& err) const {
   Inputs inputs;
-  if (std::string why = read_inputs(&inputs); !why.empty()) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  }
-  return kExitOk;
+  const std::string why = read_inputs(&inputs);
+  return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
 }
 
 int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
-  const auto usage = [&](const std::string& why) {
-    err << kCommandName << ": " << why << '\n';
-    return kExitUsage;
-  };
+  const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
   const Clock::time_point started = Clock::now();
 
   Inputs inputs;
