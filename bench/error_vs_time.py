@@ -33,6 +33,8 @@ def load(path, clock="real_time"):
             label = "exact, tol 1e-" + name.split(":")[1]
         elif name.startswith("BM_ImpactPaper/N:"):
             label = "paper, N = " + name.split(":")[1]
+        elif name.startswith("BM_ImpactTableStrictFallback"):
+            label = "table, fallback at tol 1e-12"
         elif name.startswith("BM_ImpactTable"):
             label = "table"
         elif name.startswith("BM_ImpactRollingTable"):

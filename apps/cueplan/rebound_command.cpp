@@ -197,7 +197,9 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
       ->capture_default_str()
       ->group(method);
   c.add_option("--tolerance", args_.tolerance,
-               "exact: local error per step relative to V0, in [1e-15, 1e-2]")
+               "exact: local error per step relative to V0, in [1e-15, 1e-2]; with --method "
+               "table, for the impacts the table does not answer (default: matched to the "
+               "table's accuracy, 1e-9)")
       ->type_name("TOL")
       ->capture_default_str()
       ->group(method);
@@ -280,6 +282,10 @@ std::string ReboundCommand::read_options(phys::ImpactOptions* options) const {
     return "--method must be one of exact, paper, table, got '" + args_.method + "'";
   options->paper_steps = args_.steps;
   options->tolerance = args_.tolerance;
+  // With the table, a tolerance given is the one of the impacts it does not answer;
+  // otherwise those match the table's accuracy.
+  if (options->method == phys::ImpactMethod::table && given("--tolerance"))
+    options->table_fallback_tolerance = args_.tolerance;
   if (std::string why = check_options(*options); !why.empty()) return why;
   if (args_.threads < 0)
     return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);

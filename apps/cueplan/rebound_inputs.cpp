@@ -90,10 +90,11 @@ std::optional<physics::ImpactTable> acquire_table(const physics::CushionParams& 
     const physics::ImpactTableError& measured = table.measured_error();
     char summary[256];
     std::snprintf(summary, sizeof summary,
-                  "; %.3g %% of %lld cells answer with the exact method; elsewhere max error "
-                  "%.3g of V0 in speed, %.3g deg in angle",
+                  "; %.3g %% of %lld cells answer with the exact method (by default at "
+                  "tolerance %.3g); elsewhere max error %.3g of V0 in speed, %.3g deg in angle",
                   100.0 * table.fallback_fraction(), static_cast<long long>(measured.cells),
-                  measured.max_speed_relative, measured.max_angle_deg);
+                  table.fallback_tolerance(), measured.max_speed_relative,
+                  measured.max_angle_deg);
     *note += summary;
     return table;
   } catch (const std::exception& e) {

@@ -215,9 +215,19 @@ ImpactResult resolve_impact(const CushionParams& params, const BallState& incomi
 
   if (options.method == ImpactMethod::table) {
     if (options.table == nullptr) return invalid("method table needs a built impact table");
+    const double fallback = options.table_fallback_tolerance;
+    if (!(fallback == 0.0 || (fallback >= 1e-15 && fallback <= 1e-2)))
+      return invalid(describe("table_fallback_tolerance",
+                              "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
+                              fallback));
     ImpactResult r;
     if (options.table->resolve(params, incoming, &r)) return r;
-    // Outside the table's domain or parameters: fall through to the exact method.
+    // Outside the table's domain or parameters, or a fallback cell: the exact method,
+    // as accurate as the table.
+    ImpactOptions exact = options;
+    exact.method = ImpactMethod::exact;
+    exact.tolerance = fallback > 0.0 ? fallback : options.table->fallback_tolerance();
+    return resolve_impact(params, incoming, exact);
   }
   if (options.method == ImpactMethod::paper && options.paper_steps < 1)
     return invalid(describe("paper_steps", "must be at least 1", options.paper_steps));

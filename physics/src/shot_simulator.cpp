@@ -323,7 +323,10 @@ ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
   ImpactOptions impact;
   impact.tolerance = std::clamp(options.impact_accuracy / 100.0, 1e-14, 1e-3);
   impact.method = chosen_impact_method(scene, options);
-  if (impact.method == ImpactMethod::table) impact.table = options.table;
+  if (impact.method == ImpactMethod::table) {
+    impact.table = options.table;
+    impact.table_fallback_tolerance = impact.tolerance;  // the accuracy asked for, as above
+  }
   result.impact_method = impact.method;
 
   // Cue strike: speed along the aim, topspin about the horizontal axis perpendicular

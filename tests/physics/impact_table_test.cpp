@@ -357,6 +357,57 @@ TEST_F(ImpactTableTest, ResolveImpactUsesTableOrFallsBackToExact) {
   EXPECT_GT(by_exact, 0);  // fallback cells and |k| beyond nothing: both kinds occur
 }
 
+// Where the table declines, resolve_impact answers with the exact method at the
+// tolerance matched to the table, and stays inside the table's own bounds against a
+// converged run (tolerance 1e-14, an independent computation).
+TEST_F(ImpactTableTest, FallbackIsAsAccurateAsTheTable) {
+  ImpactOptions options;
+  options.method = ImpactMethod::table;
+  options.table = table_.get();
+  ImpactOptions strict = options;
+  strict.table_fallback_tolerance = 1e-12;
+  ImpactOptions converged;
+  converged.tolerance = 1e-14;
+  converged.max_steps = 1000000;
+  const double bound = table_->options().cell_tolerance;
+  int fallbacks = 0;
+  long matched_work = 0, strict_work = 0;
+  for (const Sample& s : samples(400, 31)) {
+    const BallState in = state_of(s);
+    ImpactResult direct;
+    if (table_->resolve(params_, in, &direct)) continue;
+    const ImpactResult r = resolve_impact(params_, in, options);
+    ASSERT_TRUE(usable(r.status));
+    EXPECT_EQ(r.method_used, ImpactMethod::exact);
+    ++fallbacks;
+    const ImpactResult x = resolve_impact(params_, in, converged);
+    EXPECT_LE(std::abs(r.rebound_speed - x.rebound_speed) / s.speed, bound);
+    EXPECT_LE(std::abs(r.rebound_angle_deg - x.rebound_angle_deg), 100.0 * bound);
+    EXPECT_LE(state_difference(params_, r, x, s.speed), 10.0 * bound);
+    // The tolerance used is the table's own, and a caller can ask for a stricter one.
+    ImpactOptions same;
+    same.tolerance = table_->fallback_tolerance();
+    EXPECT_EQ(r.outgoing.velocity.x, resolve_impact(params_, in, same).outgoing.velocity.x);
+    matched_work += r.rhs_evaluations;
+    strict_work += resolve_impact(params_, in, strict).rhs_evaluations;
+  }
+  ASSERT_GT(fallbacks, 20);
+  EXPECT_LT(matched_work, strict_work);
+}
+
+TEST_F(ImpactTableTest, BadFallbackToleranceIsRefusedByName) {
+  ImpactOptions options;
+  options.method = ImpactMethod::table;
+  options.table = table_.get();
+  const BallState in = incoming_state_k(1.0, 45.0, 1.0, 0.0, params_.radius);
+  for (double bad : {-1e-9, 1.0, std::nan(""), 1e-20}) {
+    options.table_fallback_tolerance = bad;
+    const ImpactResult r = resolve_impact(params_, in, options);
+    EXPECT_EQ(r.status, ImpactStatus::invalid_input) << bad;
+    EXPECT_NE(r.message.find("table_fallback_tolerance"), std::string::npos) << r.message;
+  }
+}
+
 TEST_F(ImpactTableTest, ConcurrentQueriesGiveTheSameAnswers) {
   const std::vector<Sample> points = samples(400, 29);
   std::vector<double> serial(points.size(), -1.0);

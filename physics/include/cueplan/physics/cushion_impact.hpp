@@ -108,6 +108,9 @@ struct ImpactOptions {
                               // costliest of 30 000 random impacts needed 9 434 calls of
                               // the right-hand side, a few hundred steps
   const ImpactTable* table = nullptr;    // table: the surrogate (required)
+  // table: the exact method's tolerance for the impacts the table does not answer;
+  // 0 matches it to the table's accuracy (ImpactTable::fallback_tolerance()).
+  double table_fallback_tolerance = 0.0;
   std::vector<TraceSample>* trace = nullptr;  // optional slip history (exact, paper)
 };
 
