@@ -106,8 +106,8 @@ class ImpactTable {
   double roll_fallback_fraction() const;
   // The exact method's tolerance for the impacts this table does not answer, matched
   // to the table's accuracy: cell_tolerance / 500 (1e-9 for the default table), at
-  // which the exact method's worst error over the domain is about 20 times below the
-  // table's bounds (bench/README.md) at about half the time of its default tolerance.
+  // which the exact method's worst error over the domain is 45 times or more inside
+  // the table's bounds (bench/README.md), at about 60 % of its default tolerance's time.
   double fallback_tolerance() const { return options_.cell_tolerance / 500.0; }
 
  private:
