@@ -199,6 +199,11 @@ ImpactResult to_result(const CushionParams& params, const detail::ScaledOutcome&
   return r;
 }
 
+// The tolerances the exact method accepts.
+bool tolerance_in_range(double tolerance) {
+  return std::isfinite(tolerance) && tolerance >= 1e-15 && tolerance <= 1e-2;
+}
+
 ImpactResult invalid(std::string why) {
   ImpactResult r;
   r.status = ImpactStatus::invalid_input;
@@ -213,10 +218,14 @@ ImpactResult resolve_impact(const CushionParams& params, const BallState& incomi
   if (std::string why = params.validate(); !why.empty()) return invalid(std::move(why));
   if (std::string why = validate_state(incoming); !why.empty()) return invalid(std::move(why));
 
+  // The exact method's tolerance: its own, or for the impacts the table does not
+  // answer, the one asked for the table's fallbacks.
+  double tolerance = options.tolerance;
+  const char* tolerance_field = "tolerance";
   if (options.method == ImpactMethod::table) {
     if (options.table == nullptr) return invalid("method table needs a built impact table");
     const double fallback = options.table_fallback_tolerance;
-    if (!(fallback == 0.0 || (fallback >= 1e-15 && fallback <= 1e-2)))
+    if (fallback != 0.0 && !tolerance_in_range(fallback))
       return invalid(describe("table_fallback_tolerance",
                               "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
                               fallback));
@@ -224,17 +233,13 @@ ImpactResult resolve_impact(const CushionParams& params, const BallState& incomi
     if (options.table->resolve(params, incoming, &r)) return r;
     // Outside the table's domain or parameters, or a fallback cell: the exact method,
     // as accurate as the table.
-    ImpactOptions exact = options;
-    exact.method = ImpactMethod::exact;
-    exact.tolerance = fallback > 0.0 ? fallback : options.table->fallback_tolerance();
-    return resolve_impact(params, incoming, exact);
+    tolerance = fallback != 0.0 ? fallback : options.table->fallback_tolerance();
+    tolerance_field = "table_fallback_tolerance";
   }
   if (options.method == ImpactMethod::paper && options.paper_steps < 1)
     return invalid(describe("paper_steps", "must be at least 1", options.paper_steps));
-  if (options.method == ImpactMethod::exact &&
-      (!std::isfinite(options.tolerance) || !(options.tolerance >= 1e-15) ||
-       !(options.tolerance <= 1e-2)))
-    return invalid(describe("tolerance", "must lie in [1e-15, 1e-2]", options.tolerance));
+  if (options.method != ImpactMethod::paper && !tolerance_in_range(tolerance))
+    return invalid(describe(tolerance_field, "must lie in [1e-15, 1e-2]", tolerance));
 
   detail::ScaledImpact impact;
   impact.geometry = detail::Geometry::from(params);
@@ -252,7 +257,7 @@ ImpactResult resolve_impact(const CushionParams& params, const BallState& incomi
   if (used == ImpactMethod::paper)
     out = detail::solve_paper(impact, options.paper_steps, options.trace);
   else
-    out = detail::solve_exact(impact, options.tolerance, options.max_steps, options.trace);
+    out = detail::solve_exact(impact, tolerance, options.max_steps, options.trace);
 
   ImpactResult r = to_result(params, out, v, options.trace, trace_from);
   r.method_used = used;

@@ -18,6 +18,7 @@
 // A built table is immutable: resolve() may be called from many threads at once.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -108,7 +109,10 @@ class ImpactTable {
   // to the table's accuracy: cell_tolerance / 500 (1e-9 for the default table), at
   // which the exact method's worst error over the domain is 45 times or more inside
   // the table's bounds (bench/README.md), at about 60 % of its default tolerance's time.
-  double fallback_tolerance() const { return options_.cell_tolerance / 500.0; }
+  // Kept within the exact method's range [1e-15, 1e-2].
+  double fallback_tolerance() const {
+    return std::clamp(options_.cell_tolerance / 500.0, 1e-15, 1e-2);
+  }
 
  private:
   friend class ImpactTableAccess;  // build and file code in impact_table.cpp
