@@ -509,6 +509,81 @@ TEST(CushionImpact, StickAtTheCushionHoldsWithoutChattering) {
   EXPECT_GT(inside, 5);
 }
 
+// Three impacts from random searches (tests/properties, tests/stress) that the exact
+// method once failed; each is compared with a converged run and with the paper's
+// independent fixed-step scheme.
+struct GeneralCase {
+  CushionParams params;
+  BallState state;
+};
+
+GeneralCase general_case(double mu_w, double mu_s, double e, Vec3 v, Vec3 w) {
+  GeneralCase c;
+  c.params.mu_cushion = mu_w;
+  c.params.mu_table = mu_s;
+  c.params.restitution = e;
+  c.state.velocity = v;
+  c.state.spin = w;
+  return c;
+}
+
+void expect_agrees_with_converged_and_paper(const GeneralCase& c, double agree, double paper_agree) {
+  const double v0 = std::hypot(c.state.velocity.x, c.state.velocity.y);
+  ImpactOptions converged;
+  converged.tolerance = 1e-14;
+  converged.max_steps = 1000000;
+  const ImpactResult ref = resolve_impact(c.params, c.state, converged);
+  ASSERT_EQ(ref.status, ImpactStatus::ok) << ref.message;
+  ImpactOptions paper;
+  paper.method = ImpactMethod::paper;
+  paper.paper_steps = 200000;
+  const ImpactResult fixed_step = resolve_impact(c.params, c.state, paper);
+  ASSERT_EQ(fixed_step.status, ImpactStatus::ok);
+  EXPECT_LT(state_difference(c.params, fixed_step, ref, v0), paper_agree);
+  for (double tol : {1e-12, 1e-10, 1e-8}) {
+    ImpactOptions o;
+    o.tolerance = tol;
+    const ImpactResult r = resolve_impact(c.params, c.state, o);
+    ASSERT_EQ(r.status, ImpactStatus::ok) << "tolerance " << tol << ": " << r.message;
+    EXPECT_LT(r.outgoing.velocity.y, 0.0) << "tolerance " << tol;
+    EXPECT_LE(kinetic_energy(c.params, r.outgoing), kinetic_energy(c.params, c.state));
+    EXPECT_LT(state_difference(c.params, r, ref, v0), agree * std::max(1.0, tol / 1e-12))
+        << "tolerance " << tol;
+  }
+}
+
+TEST(CushionImpact, SlipNearZeroAtTheEdgeOfItsConeIsLanded) {
+  // The cushion slip falls to zero while the friction that sticking needs sits
+  // within 1 % of the cone's edge: the slip shrinks slowly while its direction turns
+  // on a scale of |slip|. Once this ran into the step bound at 1e-12.
+  const GeneralCase c = general_case(0.27970630032186816, 0.27027531113071745,
+                                     0.60932832193429931, {0.29279708404401505, 0.51011200611572516, 0.0},
+                                     {-29.834230670898176, 9.7180755256806997, 13.668784622611369});
+  expect_agrees_with_converged_and_paper(c, 1e-10, 1e-5);
+}
+
+TEST(CushionImpact, LongSlideNearZeroSlipEndsWithinTheStepBound) {
+  // The cushion slip lingers within 1e-5 of V0 of zero for a tenth of the impulse,
+  // never quite sticking: about 2 600 steps at 1e-12.
+  const GeneralCase c = general_case(0.21147673187492258, 0.37324061664197583,
+                                     0.92405661367701053, {0.11412810579521773, 1.3622691511507379, 0.0},
+                                     {-70.171922307600326, -140.67099490347147, -62.107225622153699});
+  // Whether the slip touches zero is decided within the tolerance, and a stick over
+  // part of the slide moves the outcome by ~1e-7 of V0.
+  expect_agrees_with_converged_and_paper(c, 5e-7, 1e-5);
+}
+
+TEST(CushionImpact, TableSlipEndingWithCompressionStillRebounds) {
+  // The cloth slip reaches zero exactly as compression ends while the cushion
+  // sticks; judging the stick there by the residual slip's direction once broke it
+  // and ended the impact with v_y = 0.
+  const GeneralCase c = general_case(0.30550504523682931, 0.77395444614015341, 0.98,
+                                     {-1.3742983474375651e-08, 0.7874149506488507, 0.0},
+                                     {29.996760024718125, 5.2354222759526291e-07, 0.0});
+  // (The fixed-step scheme steps over the coinciding events: 2.5e-5 at N = 200 000.)
+  expect_agrees_with_converged_and_paper(c, 1e-10, 1e-4);
+}
+
 TEST(CushionImpact, ParseMethodRoundTrips) {
   for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::paper, ImpactMethod::table}) {
     ImpactMethod parsed = ImpactMethod::paper;
