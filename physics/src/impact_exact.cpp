@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "impact_methods.hpp"
 
@@ -35,6 +36,7 @@ constexpr int kDim = 6;
 using State = std::array<double, kDim>;
 enum : int { kUx = 0, kOx, kOy, kOz, kP, kW };
 
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 constexpr int kMaxColumns = 8;  // midpoint runs of 2, 4, ..., 16 substeps
 
 struct ContactSlip {
@@ -444,10 +446,18 @@ void ExactIntegrator::run() {
       const double dw = y_[kW] - work_end;
       const double disc = t_ * t_ + 2.0 * dw / (g_.c * q);
       const double land = disc > 0.0 ? -t_ + std::sqrt(disc) : -t_;
-      if (std::abs(land) <= landing_) break;  // landed
+      // Landed: within landing_ in t, or with the work left below W's own rounding
+      // (near W = W_end one ulp of W can span more than landing_ in t).
+      if (std::abs(land) <= landing_ ||
+          std::abs(dw) <= 4.0 * kEpsilon * std::max(std::abs(y_[kW]), std::abs(work_end)))
+        break;
       if (land <= step) {
-        step = land;
-        target = Target::impact_end;
+        if (land >= -step) {
+          step = land;
+          target = Target::impact_end;
+        } else {
+          step = -step;  // overshot by more than a step: walk back a step at a time
+        }
       }
     }
     // Slips heading for zero: Newton prediction of when they get there.
@@ -490,7 +500,7 @@ void ExactIntegrator::run() {
     // (Ending within zero_slip_ of zero is a landing, whatever the rounding sign.)
     if ((moving_i && si1.magnitude() > zero_slip_ && si0.x * si1.x + si0.y * si1.y < 0.0) ||
         (moving_c && sc1.magnitude() > zero_slip_ && sc0.x * sc1.x + sc0.y * sc1.y < 0.0)) {
-      h = 0.5 * step;
+      h = 0.5 * std::abs(step);
       continue;
     }
 

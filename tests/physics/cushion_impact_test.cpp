@@ -533,18 +533,18 @@ void expect_agrees_with_converged_and_paper(const GeneralCase& c, double agree, 
   converged.tolerance = 1e-14;
   converged.max_steps = 1000000;
   const ImpactResult ref = resolve_impact(c.params, c.state, converged);
-  ASSERT_EQ(ref.status, ImpactStatus::ok) << ref.message;
+  ASSERT_TRUE(usable(ref.status)) << ref.message;
   ImpactOptions paper;
   paper.method = ImpactMethod::paper;
   paper.paper_steps = 200000;
   const ImpactResult fixed_step = resolve_impact(c.params, c.state, paper);
-  ASSERT_EQ(fixed_step.status, ImpactStatus::ok);
+  ASSERT_TRUE(usable(fixed_step.status));
   EXPECT_LT(state_difference(c.params, fixed_step, ref, v0), paper_agree);
   for (double tol : {1e-12, 1e-10, 1e-8}) {
     ImpactOptions o;
     o.tolerance = tol;
     const ImpactResult r = resolve_impact(c.params, c.state, o);
-    ASSERT_EQ(r.status, ImpactStatus::ok) << "tolerance " << tol << ": " << r.message;
+    ASSERT_EQ(r.status, ref.status) << "tolerance " << tol << ": " << r.message;
     EXPECT_LT(r.outgoing.velocity.y, 0.0) << "tolerance " << tol;
     EXPECT_LE(kinetic_energy(c.params, r.outgoing), kinetic_energy(c.params, c.state));
     EXPECT_LT(state_difference(c.params, r, ref, v0), agree * std::max(1.0, tol / 1e-12))
@@ -582,6 +582,28 @@ TEST(CushionImpact, TableSlipEndingWithCompressionStillRebounds) {
                                      {29.996760024718125, 5.2354222759526291e-07, 0.0});
   // (The fixed-step scheme steps over the coinciding events: 2.5e-5 at N = 200 000.)
   expect_agrees_with_converged_and_paper(c, 1e-10, 1e-4);
+}
+
+TEST(CushionImpact, EndOfImpactLandsWhereWorkIsAtItsRounding) {
+  // e = 0.015: W_end = (1 - e^2) W_c sits so close to W_c that one ulp of W spans
+  // more than the landing threshold in t; the landing once went back and forth for
+  // ever between the two neighbours of W_end.
+  const GeneralCase c = general_case(0.14, 0.212, 0.014693047828934479,
+                                     {-9.0533985938952135, 17.833563129673671, 0.0},
+                                     {4598.3464715089785, 6358.9256306444186, 4488.6868328377077});
+  expect_agrees_with_converged_and_paper(c, 1e-10, 1e-5);
+}
+
+TEST(CushionImpact, LandingThatOvershootsTheEndWalksBack) {
+  // mu_s = 1.25: the step that lands on the end of the impact overshoots it by more
+  // than the step back can cover at once (the cloth slip nears zero just past the
+  // end); the step back once failed for ever at the same size. Stepping back
+  // through that region costs accuracy: 1.1e-7 of V0 at 1e-12, a known worst case
+  // (tests/README.md). The paper scheme's first-order error is 1.1e-5 here.
+  const GeneralCase c = general_case(0.10478822559023439, 1.2470386685291586, 0.98,
+                                     {-1.4827346683634259e-08, 0.8495443859709424, 0.0},
+                                     {-149.0917798046589, -2.6021424464093279e-06, 599.83209132349009});
+  expect_agrees_with_converged_and_paper(c, 2e-7, 2e-5);
 }
 
 TEST(CushionImpact, ParseMethodRoundTrips) {
