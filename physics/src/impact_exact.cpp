@@ -22,6 +22,9 @@
 //     slowly the slip shrinks, and the impulse lands it to second order instead;
 //   - a stick breaking (the friction needed leaves the cone): bracketed and found by
 //     the Illinois method; the contact then slips against the friction it needed.
+// A slip that passes near zero without reaching it turns through up to half a turn
+// on a scale of its own size; no step turns a slip by more than kMaxTurn, so that the
+// extrapolation's error estimate sees the turn rather than stepping over it.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -38,6 +41,7 @@ enum : int { kUx = 0, kOx, kOy, kOz, kP, kW };
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 constexpr int kMaxColumns = 8;  // midpoint runs of 2, 4, ..., 16 substeps
+constexpr double kMaxTurn = 0.5;  // rad: the most a step may turn a slip (see run())
 
 struct ContactSlip {
   double x = 0.0, y = 0.0;
@@ -461,25 +465,35 @@ void ExactIntegrator::run() {
       }
     }
     // Slips heading for zero: Newton prediction of when they get there.
-    auto predict = [&](bool sticking, ContactSlip sl, double dsx, double dsy, Target which) {
+    auto predict = [&](bool sticking, bool young, ContactSlip sl, double dsx, double dsy,
+                       Target which) {
       if (sticking) return;
       const double mag = sl.magnitude();
       if (mag <= zero_slip_) return;
       const double rate = (sl.x * dsx + sl.y * dsy) / mag;
-      if (rate >= 0.0) return;
-      const double when = approach_ * mag / -rate;
-      if (when < step) {
-        step = when;
-        target = which;
+      if (rate < 0.0) {
+        const double when = approach_ * mag / -rate;
+        if (when < step) {
+          step = when;
+          target = which;
+        }
+      }
+      // A slip passing near zero turns through up to half a turn on a scale of its
+      // size: no step turns it by more than kMaxTurn (a young slip's direction is
+      // not its own and turns slowly).
+      const double sideways = std::abs(sl.x * dsy - sl.y * dsx) / mag;
+      if (!young && step > 0.0 && sideways * step > kMaxTurn * mag) {
+        step = kMaxTurn * mag / sideways;
+        target = Target::none;
       }
     };
     {
       // Slip rates per unit t from the state rates (eqs. 12, 13).
       const double dux = f0[kUx], duy = -1.0, dox = f0[kOx], doy = f0[kOy], doz = f0[kOz];
       const ContactSlip si = slip_i(t_, y_), sc = slip_c(t_, y_);
-      predict(modes_.stick_i, si, dux + doy * g_.s - doz * g_.c, -duy * g_.s + dox,
+      predict(modes_.stick_i, young_i_, si, dux + doy * g_.s - doz * g_.c, -duy * g_.s + dox,
               Target::slip_zero_i);
-      predict(modes_.stick_c, sc, dux - doy, duy + dox, Target::slip_zero_c);
+      predict(modes_.stick_c, young_c_, sc, dux - doy, duy + dox, Target::slip_zero_c);
     }
 
     State next;
