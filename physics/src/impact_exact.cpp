@@ -41,7 +41,7 @@ enum : int { kUx = 0, kOx, kOy, kOz, kP, kW };
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 constexpr int kMaxColumns = 8;  // midpoint runs of 2, 4, ..., 16 substeps
-constexpr double kMaxTurn = 0.5;  // rad: the most a step may turn a slip (see run())
+constexpr double kMaxTurn = 0.5;  // rad: the most a step may turn a slip (see above)
 
 struct ContactSlip {
   double x = 0.0, y = 0.0;
