@@ -527,6 +527,9 @@ void ExactIntegrator::run() {
       if (locate_stick_break(step, next, &h_root)) {
         step = h_root;
         target = Target::none;
+        // A landing step can overshoot the end of the impact; a stick that breaks
+        // only beyond the end held throughout (the landing then steps back).
+        if (!compressing && next[kW] < work_end) broke = false;
       } else {
         step = 0.0;
         next = y_;
