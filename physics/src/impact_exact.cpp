@@ -351,8 +351,9 @@ bool ExactIntegrator::close_slip(Contact contact, bool compressing) {
     }
     return j;
   };
-  // State change for a friction impulse: the rates of impact_model.hpp less the
-  // normal impulse's own term.
+  // State change for a friction impulse: rates_for (impact_model.hpp) less the
+  // normal impulse's own term, written out so that -c is not added and taken away
+  // again (that would cost the tiny impulses here their last digits in u_y).
   auto change = [&](const Friction& j) -> Scaled {
     return {j.ix + j.cx, -g_.s * j.iy + j.cy, 2.5 * (j.iy + j.cy), 2.5 * (g_.s * j.ix - j.cx),
             -2.5 * g_.c * j.ix};
