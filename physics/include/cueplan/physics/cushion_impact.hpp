@@ -104,10 +104,9 @@ struct ImpactOptions {
   ImpactMethod method = ImpactMethod::exact;
   int paper_steps = 5000;     // paper: N, with dP_I = (1 + e) M V0 sin(alpha) / N
   double tolerance = 1e-12;   // exact: local error per step, relative to the speed scale
-  int max_steps = 10000;      // exact: work bound on accepted plus rejected steps; of
-                              // 2 000 000 random impacts at 1e-12 (tests/README.md) the
-                              // costliest needed 2 600 steps (33 804 right-hand side
-                              // calls) and one needed more than 10 000
+  int max_steps = 10000;      // exact: work bound on accepted plus rejected steps; a
+                              // slide lingering near zero slip needs more than 2000
+                              // (cushion_impact_test.cpp, LongSlideNearZeroSlip...)
   const ImpactTable* table = nullptr;    // table: the surrogate (required)
   // table: the exact method's tolerance for the impacts the table does not answer;
   // 0 matches it to the table's accuracy (ImpactTable::fallback_tolerance()).
