@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev
   libeigen3-dev libnlopt-cxx-dev libyaml-cpp-dev zlib1g-dev
-  libompl-dev librapidcheck-dev
+  libompl-dev librapidcheck-dev libfmt-dev
   clang libclang-rt-14-dev
 )
 
