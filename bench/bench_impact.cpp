@@ -17,6 +17,7 @@
 
 #include "cueplan/physics/cushion_impact.hpp"
 #include "cueplan/physics/impact_table.hpp"
+#include "table_cache.hpp"
 
 namespace {
 
@@ -60,7 +61,7 @@ const std::vector<Sample>& rolling_samples() {
 
 const ImpactTable& table() {
   static const ImpactTable t =
-      ImpactTable::load_or_build(CushionParams{}, ImpactTableOptions{}, default_table_cache_dir());
+      cueplan::cli::load_or_build_table(CushionParams{}, ImpactTableOptions{}, cueplan::cli::default_table_cache_dir());
   return t;
 }
 

@@ -30,6 +30,7 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/route.hpp"
+#include "table_cache.hpp"
 
 namespace {
 
@@ -83,9 +84,9 @@ int main(int argc, char** argv) {
   }
   planner::quiet_ompl_messages();
   std::string note;
-  const physics::ImpactTable table = physics::ImpactTable::load_or_build(
+  const physics::ImpactTable table = cli::load_or_build_table(
       physics::snooker_scene().ball_and_cushion, physics::ImpactTableOptions{},
-      physics::default_table_cache_dir(), &note);
+      cli::default_table_cache_dir(), &note);
   std::fprintf(stderr, "impact table: %s\n", note.c_str());
   physics::SimulationOptions sim;
   sim.impact_method = physics::ImpactMethod::table;

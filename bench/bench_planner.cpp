@@ -33,6 +33,7 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "table_cache.hpp"
 
 #ifndef CUEPLAN_PROBLEMS_DIR
 #define CUEPLAN_PROBLEMS_DIR "problems"
@@ -238,8 +239,8 @@ int main(int argc, char** argv) {
     if (it == tables.end()) {
       std::string note;
       const auto t0 = std::chrono::steady_clock::now();
-      tables.push_back(physics::ImpactTable::load_or_build(
-          params, physics::ImpactTableOptions{}, physics::default_table_cache_dir(), &note));
+      tables.push_back(cli::load_or_build_table(
+          params, physics::ImpactTableOptions{}, cli::default_table_cache_dir(), &note));
       std::fprintf(stderr, "impact table: %s (%.1f s)\n", note.c_str(),
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       it = std::prev(tables.end());
@@ -263,8 +264,8 @@ int main(int argc, char** argv) {
   if (base_share > 0) base.global_share = base_share;
   if (base_starts > 0) base.local_starts = base_starts;
   if (base_samples >= 0) base.robustness_samples = base_samples;
-  if (std::string why = base.validate(); !why.empty()) {
-    std::fprintf(stderr, "bench_planner: %s\n", why.c_str());
+  if (physics::Validation e = base.validate()) {
+    std::fprintf(stderr, "bench_planner: %s\n", e->message().c_str());
     return 2;
   }
   // Warm up: page the table in and settle the clocks.

@@ -11,6 +11,7 @@
 
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/physics/shot.hpp"
+#include "table_cache.hpp"
 
 namespace {
 
@@ -37,7 +38,7 @@ Scene scene(bool with_obstacles) {
 
 const ImpactTable& table() {
   static const ImpactTable t =
-      ImpactTable::load_or_build(CushionParams{}, ImpactTableOptions{}, default_table_cache_dir());
+      cueplan::cli::load_or_build_table(CushionParams{}, ImpactTableOptions{}, cueplan::cli::default_table_cache_dir());
   return t;
 }
 

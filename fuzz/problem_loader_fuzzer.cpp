@@ -76,12 +76,13 @@ void check_problem(const cueplan::problems::Problem& problem) {
       broken("an accepted problem holds finite pockets", problem.name);
   for (const Vec2 obstacle : scene.obstacles)
     if (!finite(obstacle)) broken("an accepted problem holds finite obstacles", problem.name);
-  if (const std::string why = scene.validate(); !why.empty())
-    broken("an accepted scene passes Scene::validate", why);
-  if (const std::string why = scene.check_position(problem.cue_ball, "cue_ball"); !why.empty())
-    broken("an accepted cue ball passes Scene::check_position", why);
-  if (const std::string why = scene.check_position(problem.target, "target"); !why.empty())
-    broken("an accepted target passes Scene::check_position", why);
+  if (const auto e = scene.validate()) broken("an accepted scene passes Scene::validate", e->message());
+  if (const auto e = scene.check_position(problem.cue_ball, {"cue_ball"}))
+    broken("an accepted cue ball passes Scene::check_position", e->message());
+  if (const auto e = scene.check_position(problem.target, {"target"}))
+    broken("an accepted target passes Scene::check_position", e->message());
+  if (const auto e = cueplan::problems::validate(problem))
+    broken("an accepted problem passes problems::validate", e->message());
   if (!(problem.tolerance > 0.0)) broken("an accepted tolerance is positive", problem.name);
   if (!(limits.speed_min > 0.0 && limits.speed_min < limits.speed_max))
     broken("accepted speed limits satisfy 0 < min < max", problem.name);

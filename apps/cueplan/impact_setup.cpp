@@ -12,6 +12,7 @@
 #include "output_file.hpp"
 #include "rebound_inputs.hpp"
 #include "shot_words.hpp"
+#include "table_cache.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -60,7 +61,7 @@ int prepare_impact_table(const char* command, const phys::Scene& scene,
                          phys::ImpactTable* table, phys::SimulationOptions* options,
                          std::ostream& err) {
   const phys::CushionParams& params = scene.ball_and_cushion;
-  const std::string cache_dir = table_cache.empty() ? phys::default_table_cache_dir() : table_cache;
+  const std::string cache_dir = table_cache.empty() ? default_table_cache_dir() : table_cache;
   if (std::string why = ensure_directory(cache_dir); !why.empty()) {
     err << command << ": --table-cache: " << why << '\n';
     return kExitUsage;

@@ -1,11 +1,13 @@
 #include "planner_flags.hpp"
+#include "field_names.hpp"
 #include "shot_words.hpp"
 
 #include <CLI/CLI.hpp>
+
+#include "cueplan/physics/parallel.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <thread>
 #include <utility>
 
 namespace cueplan::cli {
@@ -13,28 +15,19 @@ namespace {
 
 namespace plan = cueplan::planner;
 
-// A PlannerOptions message that starts with a field name, with the flag named instead.
-std::string with_flag_name(const std::string& message) {
-  static const std::pair<const char*, const char*> kFields[] = {
-      {"max_evaluations", "--max-evaluations"},
-      {"max_time_s", "--max-time"},
-      {"local_starts", "--starts"},
-      {"threads", "--threads"},
-      {"noise.scale", "--noise"},
-      {"robustness_samples", "--samples"},
-      {"max_alternatives", "--alternatives"},
-      {"simulation.impact_accuracy", "--accuracy"},
-      {"global", "--global"},
-      {"local", "--local"},
-  };
-  for (const auto& [field, flag] : kFields) {
-    const std::string name = field;
-    if (message.compare(0, name.size(), name) == 0 && message.size() > name.size() &&
-        message[name.size()] == ' ')
-      return flag + message.substr(name.size());
-  }
-  return message;
-}
+// PlannerOptions' fields and the flags that set them.
+const std::initializer_list<FieldName> kPlannerFlags = {
+    {{"max_evaluations"}, "--max-evaluations"},
+    {{"max_time_s"}, "--max-time"},
+    {{"local_starts"}, "--starts"},
+    {{"threads"}, "--threads"},
+    {{"noise", "scale"}, "--noise"},
+    {{"robustness_samples"}, "--samples"},
+    {{"max_alternatives"}, "--alternatives"},
+    {{"simulation", "impact_accuracy"}, "--accuracy"},
+    {{"global"}, "--global"},
+    {{"local"}, "--local"},
+};
 
 }  // namespace
 
@@ -88,8 +81,10 @@ void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
       ->capture_default_str()
       ->group(group);
   c.add_flag("--enforce-rigid-limit", args->enforce_rigid_limit,
-             "Reject strokes that meet a cushion faster than 2.5 m/s along its normal, where the "
-             "rigid-cushion model is not trusted (otherwise such strokes are only flagged)")
+             "Reject strokes that meet a cushion faster than " +
+                 number(physics::CushionParams{}.rigid_speed_limit, "m/s") +
+                 " along its normal, where the rigid-cushion model is not trusted (otherwise "
+                 "such strokes are only flagged)")
       ->group(group);
   c.add_option("--alternatives", args->alternatives,
                "Distinct solutions (other cushion routes, draw or follow, left or right) reported "
@@ -127,15 +122,15 @@ std::string read_planner_options(const PlannerArgs& args, int threads,
   options->max_time_s = args.max_time_s;
   options->local_starts = args.starts;
   options->seed = args.seed;
-  options->threads =
-      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  options->threads = static_cast<int>(physics::thread_count(threads));
   options->noise.scale = args.noise;
   options->robust = args.robust;
   options->robustness_samples = args.samples;
   options->enforce_rigid_limit = args.enforce_rigid_limit;
   options->max_alternatives = args.alternatives;
   options->simulation = simulation;
-  return with_flag_name(options->validate());
+  const physics::Validation e = options->validate();
+  return e ? message_in(*e, kPlannerFlags) : std::string();
 }
 
 std::string noise_text(const plan::NoiseModel& noise) {

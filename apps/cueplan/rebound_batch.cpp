@@ -3,8 +3,8 @@
 #include <optional>
 #include <ostream>
 
+#include "cueplan/physics/parallel.hpp"
 #include "csv.hpp"
-#include "parallel.hpp"
 #include "rebound_inputs.hpp"
 
 namespace cueplan::cli {
@@ -56,8 +56,8 @@ BatchOutcome solve_row(const BatchRow& row, const physics::CushionParams& params
 void write_batch(const BatchInput& input, const physics::CushionParams& params,
                  const physics::ImpactOptions& options, int threads, std::ostream& out) {
   std::vector<BatchOutcome> outcomes(input.rows.size());
-  parallel_for(input.rows.size(), thread_count(threads, input.rows.size()),
-               [&](size_t i) { outcomes[i] = solve_row(input.rows[i], params, options); });
+  physics::parallel_for(input.rows.size(), physics::thread_count(threads, input.rows.size()),
+                        [&](size_t i, unsigned) { outcomes[i] = solve_row(input.rows[i], params, options); });
 
   out << kBatchInputHeader << ",rebound_speed,rebound_angle_deg,vx,vy,wx,wy,wz,status,message\n";
   write_batch_rows(input, kInputColumns, std::move(outcomes), out);

@@ -8,10 +8,12 @@
 
 #include "cueplan/physics/impact_table.hpp"
 #include "exit_codes.hpp"
+#include "field_names.hpp"
 #include "output_file.hpp"
 #include "rebound_batch.hpp"
 #include "rebound_inputs.hpp"
 #include "shot_words.hpp"
+#include "table_cache.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -34,10 +36,8 @@ std::string rigid_limit_warning(const phys::CushionParams& params, const Inciden
 
 void write_text(std::ostream& out, const phys::CushionParams& params, const Incidence& in,
                 const phys::ImpactResult& r) {
-  const auto line = [&](const char* label, const std::string& text) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "%-16s", label);
-    out << buf << text << '\n';
+  const auto line = [&](std::string_view label, const std::string& text) {
+    report_line(out, label, text);
   };
   const double spin_unit = in.speed / params.radius;  // rad/s per unit of k
   line("incoming",
@@ -360,7 +360,7 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
   std::optional<phys::ImpactTable> table;
   if (options.method == phys::ImpactMethod::table) {
     const std::string cache_dir =
-        args_.table_cache.empty() ? phys::default_table_cache_dir() : args_.table_cache;
+        args_.table_cache.empty() ? default_table_cache_dir() : args_.table_cache;
     if (std::string why = ensure_directory(cache_dir); !why.empty())
       return usage("--table-cache: " + why);
     std::string note;
@@ -382,7 +382,7 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
   const phys::ImpactResult result = phys::resolve_impact(
       params, phys::incoming_state(in.speed, in.angle_deg, in.topspin, in.sidespin), options);
   if (result.status == phys::ImpactStatus::invalid_input)
-    return usage(with_flag_names(result.message));
+    return usage(result.error ? message_in(*result.error, kCushionFlags) : result.message);
   if (args_.json)
     write_json(out, params, in, options, result);
   else

@@ -1,35 +1,19 @@
 #include "rebound_inputs.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <exception>
 #include <utility>
+
+#include "field_names.hpp"
+#include "table_cache.hpp"
 
 namespace cueplan::cli {
 namespace {
 
 std::string describe(const char* name, const char* rule, double value) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", name, rule, value);
-  return buf;
-}
-
-// Library field names and the flags that set them. Names with an underscore are
-// unambiguous anywhere in a message; plain words only where the message starts.
-constexpr std::pair<const char*, const char*> kFieldFlags[] = {
-    {"cushion_height", "--cushion-height"},
-    {"mu_cushion", "--mu-cushion"},
-    {"mu_table", "--mu-table"},
-    {"paper_steps", "--steps"},
-    {"mass", "--mass"},
-    {"radius", "--radius"},
-    {"restitution", "--restitution"},
-    {"tolerance", "--tolerance"},
-};
-
-bool is_word_char(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-         c == '-';
+  return physics::invalid({}, rule, value).message(name);
 }
 
 }  // namespace
@@ -45,33 +29,14 @@ std::string check_incidence(double speed, double angle_deg, double topspin, doub
   return {};
 }
 
-std::string with_flag_names(std::string message) {
-  for (const auto& [field, flag] : kFieldFlags) {
-    const std::string name = field;
-    const bool anywhere = name.find('_') != std::string::npos;
-    for (size_t at = message.find(name); at != std::string::npos; at = message.find(name, at + 1)) {
-      const size_t end = at + name.size();
-      const bool whole_word = (at == 0 || !is_word_char(message[at - 1])) &&
-                              (end == message.size() || !is_word_char(message[end]));
-      if (!whole_word || (!anywhere && at != 0)) continue;
-      message.replace(at, name.size(), flag);
-    }
-  }
-  return message;
-}
-
 std::string check_params(const physics::CushionParams& params) {
-  return with_flag_names(params.validate());
+  const physics::Validation e = params.validate();
+  return e ? message_in(*e, kCushionFlags) : std::string();
 }
 
 std::string check_options(const physics::ImpactOptions& options) {
-  // The ranges resolve_impact accepts (cushion_impact.hpp).
-  if (options.paper_steps < 1)
-    return describe("--steps", "must be at least 1", options.paper_steps);
-  if (!std::isfinite(options.tolerance) || !(options.tolerance >= 1e-15) ||
-      !(options.tolerance <= 1e-2))
-    return describe("--tolerance", "must lie in [1e-15, 1e-2]", options.tolerance);
-  return {};
+  const physics::Validation e = options.validate();
+  return e ? message_in(*e, kCushionFlags) : std::string();
 }
 
 std::optional<physics::ImpactTable> acquire_table(const physics::CushionParams& params,
@@ -80,22 +45,18 @@ std::optional<physics::ImpactTable> acquire_table(const physics::CushionParams& 
   physics::ImpactTableOptions options;
   options.threads = threads;
   try {
-    physics::ImpactTable table =
-        physics::ImpactTable::load_or_build(params, options, cache_dir, note);
+    physics::ImpactTable table = load_or_build_table(params, options, cache_dir, note);
     if (table.empty()) {
       *error = "cannot build the impact table: " + *note;
       return std::nullopt;
     }
     // What the build measured, so a user can judge the surrogate.
     const physics::ImpactTableError& measured = table.measured_error();
-    char summary[256];
-    std::snprintf(summary, sizeof summary,
-                  "; %.3g %% of %lld cells answer with the exact method (by default at "
-                  "tolerance %.3g); elsewhere max error %.3g of V0 in speed, %.3g deg in angle",
-                  100.0 * table.fallback_fraction(), static_cast<long long>(measured.cells),
-                  table.fallback_tolerance(), measured.max_speed_relative,
-                  measured.max_angle_deg);
-    *note += summary;
+    *note += fmt::format(
+        "; {:.3g} % of {} cells answer with the exact method (by default at tolerance {:.3g}); "
+        "elsewhere max error {:.3g} of V0 in speed, {:.3g} deg in angle",
+        100.0 * table.fallback_fraction(), static_cast<long long>(measured.cells),
+        table.fallback_tolerance(), measured.max_speed_relative, measured.max_angle_deg);
     return table;
   } catch (const std::exception& e) {
     *error = std::string("cannot build the impact table: ") + e.what();

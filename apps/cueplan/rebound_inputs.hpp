@@ -25,15 +25,12 @@ std::string check_incidence(double speed, double angle_deg, double topspin, doub
                             const IncidenceNames& names);
 
 // Empty when the parameters are usable (CushionParams::validate); otherwise its
-// message with the field name turned into the command-line flag.
+// error with the fields named by their flags (--mu-table, ...).
 std::string check_params(const physics::CushionParams& params);
 
-// Empty when the options are usable; otherwise one line naming --steps or --tolerance.
+// Empty when the options are usable (ImpactOptions::validate); otherwise its error
+// with the fields named by their flags (--steps, --tolerance).
 std::string check_options(const physics::ImpactOptions& options);
-
-// A library message that starts with a field name (mu_cushion, paper_steps, ...),
-// with every field name it holds turned into its flag (--mu-cushion, --steps, ...).
-std::string with_flag_names(std::string message);
 
 // Loads the impact table for `params` from `cache_dir` (which must exist) or builds
 // and saves it there.

@@ -1,6 +1,7 @@
 #include "route_command.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include "cueplan/planner/route.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "exit_codes.hpp"
+#include "field_names.hpp"
 #include "output_file.hpp"
 #include "planner_flags.hpp"
 #include "shot_report.hpp"
@@ -37,7 +39,7 @@ std::string strokes_text(int n) { return std::to_string(n) + (n == 1 ? " stroke"
 
 std::string success_text(const plan::RouteOptions& o, const plan::RouteStroke& s, bool last) {
   if (o.robustness_samples == 0) return "not estimated (--samples 0)";
-  return fixed("%.1f %%", 100.0 * s.planned.success_probability) + " of " +
+  return fmt::format("{:.1f} %", 100.0 * s.planned.success_probability) + " of " +
          std::to_string(o.robustness_samples) + " noisy strokes stop " +
          (last ? "in the target zone (within " + number(1000.0 * s.zone_radius, "mm") +
                      " of the target)"
@@ -49,10 +51,8 @@ std::string success_text(const plan::RouteOptions& o, const plan::RouteStroke& s
 
 void write_text(std::ostream& out, const prob::Problem& problem, const plan::RouteOptions& o,
                 const plan::RouteResult& r, const std::string& svg_file) {
-  const auto line = [&](const std::string& label, const std::string& text) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%-16s", label.c_str());
-    out << buf << text << '\n';
+  const auto line = [&](std::string_view label, const std::string& text) {
+    report_line(out, label, text);
   };
   line("problem", problem.name + "  (" + problem.source + ")");
   line("status", plan::to_string(r.status));
@@ -73,16 +73,16 @@ void write_text(std::ostream& out, const prob::Problem& problem, const plan::Rou
     line("    landing", landing_text(s.planned));
     line("    cushions", route_text(problem.scene, s.planned.route));
     if (last)
-      line("    miss", fixed("%.3g mm", 1000.0 * s.planned.miss_distance) + " from the target");
+      line("    miss", fmt::format("{:.3g} mm", 1000.0 * s.planned.miss_distance) + " from the target");
     line("    success", success_text(o, s, last));
   }
   if (r.status == plan::RouteStatus::solved && o.robustness_samples > 0)
     line("route success",
-         fixed("%.1f %%", 100.0 * r.route_success_probability) +
+         fmt::format("{:.1f} %", 100.0 * r.route_success_probability) +
              " (product of the strokes' success probabilities; noise: " + noise_text(o.noise) + ")");
-  line("time", fixed("%.3g s", r.time_s) +
+  line("time", fmt::format("{:.3g} s", r.time_s) +
                    (r.time_to_first_solution_s >= 0.0
-                        ? " (first route after " + fixed("%.3g s", r.time_to_first_solution_s) + ")"
+                        ? " (first route after " + fmt::format("{:.3g} s", r.time_to_first_solution_s) + ")"
                         : std::string()));
   line("search", std::string(plan::to_string(o.planner)) + " with the " +
                      plan::to_string(o.sampler) + " sampler; " + std::to_string(r.propagations) +
@@ -173,12 +173,12 @@ TableDrawing drawing_of(const prob::Problem& problem, const plan::RouteOptions& 
                                                    : std::string(plan::to_string(r.status)));
   for (size_t i = 0; i < r.strokes.size(); ++i) {
     const phys::Shot& s = r.strokes[i].planned.shot;
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "%zu. V = %.3g m/s, aim %.4g\u00b0, k_{T} = %.3g, k_{S} = %.3g",
+    std::string buf;
+    buf = fmt::format("{}. V = {:.3g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g}",
                   i + 1, s.speed, s.aim_deg, s.topspin_k, s.sidespin_k);
     std::string text = buf;
     if (o.robustness_samples > 0)
-      text += "; " + fixed("%.0f %%", 100.0 * r.strokes[i].planned.success_probability) +
+      text += "; " + fmt::format("{:.0f} %", 100.0 * r.strokes[i].planned.success_probability) +
               " of noisy strokes succeed";
     d.caption.push_back(text + ".");
   }
@@ -272,16 +272,21 @@ int RouteCommand::read(std::ostream& err, prob::Problem* problem_out,
     return usage("--planner must be sst, rrt or kpiece1, got '" + args_.planner + "'");
   if (!plan::parse_route_sampler(args_.sampler, &o.sampler))
     return usage("--sampler must be directed or random, got '" + args_.sampler + "'");
-  if (command_->count("--max-strokes") > 0 && (args_.max_strokes < 1 || args_.max_strokes > 100))
-    return usage("--max-strokes must lie in [1, 100], got " + std::to_string(args_.max_strokes));
-  if (command_->count("--time") > 0 && !(std::isfinite(args_.time_s) && args_.time_s > 0.0))
-    return usage("--time must be positive and finite (s), got " + number(args_.time_s));
-  if (!std::isfinite(args_.noise) || args_.noise < 0.0)
-    return usage("--noise must be finite and not negative, got " + number(args_.noise));
-  if (args_.samples < 0) return usage("--samples must not be negative, got " + std::to_string(args_.samples));
-  if (args_.steer_evaluations < 10)
-    return usage("--steer-evaluations must be at least 10, got " +
-                 std::to_string(args_.steer_evaluations));
+  // The flags alone first (RouteOptions::validate checks them), so that a bad flag is
+  // named before the problem file is read.
+  o.max_strokes = command_->count("--max-strokes") > 0 ? args_.max_strokes : kDefaultMaxStrokes;
+  o.max_time_s = command_->count("--time") > 0 ? args_.time_s : kDefaultTimeS;
+  o.stop_at_first_solution = args_.first;
+  o.seed = args_.seed;
+  o.noise.scale = args_.noise;
+  o.robustness_samples = args_.samples;
+  o.steer_evaluations = args_.steer_evaluations;
+  const FieldName flags[] = {{{"max_strokes"}, "--max-strokes"},
+                             {{"max_time_s"}, "--time"},
+                             {{"noise", "scale"}, "--noise"},
+                             {{"robustness_samples"}, "--samples"},
+                             {{"steer_evaluations"}, "--steer-evaluations"}};
+  if (physics::Validation e = o.validate()) return usage(message_in(*e, flags));
   if (!args_.svg_file.empty())
     if (std::string why = check_output_file(args_.svg_file); !why.empty())
       return usage("--svg: " + why);
@@ -289,18 +294,9 @@ int RouteCommand::read(std::ostream& err, prob::Problem* problem_out,
   if (!loaded.ok()) return usage(loaded.error);
   const prob::Problem& problem = *loaded.problem;
 
-  o.max_strokes = command_->count("--max-strokes") > 0 ? args_.max_strokes
-                  : problem.max_strokes                ? *problem.max_strokes
-                                                       : kDefaultMaxStrokes;
-  o.max_time_s = command_->count("--time") > 0 ? args_.time_s
-                 : problem.time_budget_s        ? *problem.time_budget_s
-                                                : kDefaultTimeS;
-  o.stop_at_first_solution = args_.first;
-  o.seed = args_.seed;
-  o.noise.scale = args_.noise;
-  o.robustness_samples = args_.samples;
-  o.steer_evaluations = args_.steer_evaluations;
-  if (std::string why = o.validate(); !why.empty()) return usage(why);
+  // The file's budgets where no flag overrides them (the loader checked them).
+  if (command_->count("--max-strokes") == 0 && problem.max_strokes) o.max_strokes = *problem.max_strokes;
+  if (command_->count("--time") == 0 && problem.time_budget_s) o.max_time_s = *problem.time_budget_s;
   *problem_out = problem;
   return kExitOk;
 }

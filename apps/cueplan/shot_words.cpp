@@ -1,6 +1,6 @@
 #include "shot_words.hpp"
 
-#include <cstdio>
+#include <fmt/format.h>
 
 #include "cueplan/physics/impact_table.hpp"
 
@@ -38,35 +38,29 @@ std::string route_text(const phys::Scene& scene, const std::vector<int>& route) 
 std::string method_text(const phys::SimulationOptions& options, const phys::Scene& scene) {
   switch (phys::chosen_impact_method(scene, options)) {
     case phys::ImpactMethod::paper:
-      return "paper (the paper's fixed-step scheme, 5000 impulse steps per cushion impact)";
-    case phys::ImpactMethod::table: {
-      char buf[256];
-      std::snprintf(
-          buf, sizeof buf,
-          "table (measured error %.3g of the speed, within the impact accuracy %.3g; the exact "
-          "method in the %.3g %% of cells where interpolation is inaccurate)",
+      return fmt::format("paper (the paper's fixed-step scheme, {} impulse steps per cushion "
+                         "impact)",
+                         phys::ImpactOptions{}.paper_steps);
+    case phys::ImpactMethod::table:
+      return fmt::format(
+          "table (measured error {:.3g} of the speed, within the impact accuracy {:.3g}; the "
+          "exact method in the {:.3g} % of cells where interpolation is inaccurate)",
           options.table->measured_error().max_state_relative, options.impact_accuracy,
           100.0 * options.table->fallback_fraction());
-      return buf;
-    }
     case phys::ImpactMethod::exact:
       break;
   }
   return "exact (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
 }
 
-std::string number(double value, const char* unit) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  std::string s = buf;
-  if (unit) s += std::string(" ") + unit;
-  return s;
+void report_line(std::ostream& out, std::string_view label, const std::string& text) {
+  out << fmt::format("{:<16}", label) << text << '\n';
 }
 
-std::string fixed(const char* pattern, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, pattern, value);
-  return buf;
+std::string number(double value, const char* unit) {
+  std::string s = fmt::format("{:.6g}", value);
+  if (unit) s += std::string(" ") + unit;
+  return s;
 }
 
 std::string cushions_allowed(const problems::Limits& limits) {

@@ -2,7 +2,9 @@
 // simulation used, so that every command says them the same way.
 #pragma once
 
+#include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cueplan/physics/shot.hpp"
@@ -14,8 +16,8 @@ namespace cueplan::cli {
 // "0.847614 m/s".
 std::string number(double value, const char* unit = nullptr);
 
-// One number through a printf pattern, e.g. fixed("%.1f %%", 100 * p).
-std::string fixed(const char* pattern, double value);
+// One line of a text report: the label in a column of 16, then the text.
+void report_line(std::ostream& out, std::string_view label, const std::string& text);
 
 // The cushion counts a problem allows: "1" or "1 to 3".
 std::string cushions_allowed(const problems::Limits& limits);

@@ -1,12 +1,14 @@
 #include "simulate_batch.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <ostream>
 
+#include "cueplan/physics/parallel.hpp"
 #include "csv.hpp"
-#include "parallel.hpp"
+#include "field_names.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -15,12 +17,6 @@ namespace phys = cueplan::physics;
 
 constexpr size_t kInputColumns = 4;
 constexpr size_t kResultColumns = 8;  // final_x .. reaches_target
-
-std::string describe(const char* name, const char* rule, double value) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", name, rule, value);
-  return buf;
-}
 
 BatchOutcome failed(std::string status, std::string message) {
   return {std::move(status), std::move(message), std::vector<std::string>(kResultColumns)};
@@ -37,18 +33,15 @@ std::string row_message(const problems::Problem& problem, const phys::Shot& shot
   };
   if (std::string why = problems::check_shot(problem.limits, shot); !why.empty())
     add("outside the problem's limits: " + why);
-  if (r.rigid_limit_exceeded) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  "a cushion normal speed of %.4g m/s exceeded the rigid-cushion limit of %.4g m/s",
-                  r.max_cushion_normal_speed, problem.scene.ball_and_cushion.rigid_speed_limit);
-    add(buf);
-  }
+  if (r.rigid_limit_exceeded)
+    add(fmt::format("a cushion normal speed of {:.4g} m/s exceeded the rigid-cushion limit of "
+                    "{:.4g} m/s",
+                    r.max_cushion_normal_speed, problem.scene.ball_and_cushion.rigid_speed_limit));
   return message;
 }
 
 BatchOutcome simulate_row(const BatchRow& row, const problems::Problem& problem,
-                          const phys::SimulationOptions& options) {
+                          const phys::CompiledScene& scene, const phys::SimulationOptions& options) {
   const std::string where = "line " + std::to_string(row.line) + ": ";
   if (row.fields.size() != kInputColumns)
     return failed("parse_error",
@@ -68,7 +61,7 @@ BatchOutcome simulate_row(const BatchRow& row, const problems::Problem& problem,
   if (std::string why = check_shot_inputs(shot, kShotColumnNames); !why.empty())
     return failed("invalid_input", where + why);
 
-  const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, shot, options);
+  const phys::ShotResult r = phys::simulate(scene, problem.cue_ball, shot, options);
   if (r.status == phys::ShotStatus::invalid_input)
     return failed("invalid_input", where + r.message);
   BatchOutcome outcome{phys::to_string(r.status), row_message(problem, shot, r), {}};
@@ -76,8 +69,8 @@ BatchOutcome simulate_row(const BatchRow& row, const problems::Problem& problem,
   outcome.results = {format_number(r.final_position.x),
                      format_number(r.final_position.y),
                      std::to_string(r.cushion_hits),
-                     r.pocketed ? "1" : "0",
-                     r.hit_obstacle ? "1" : "0",
+                     r.status == phys::ShotStatus::pocketed ? "1" : "0",
+                     r.status == phys::ShotStatus::hit_obstacle ? "1" : "0",
                      format_number(r.duration),
                      format_number(problems::miss_distance(problem, r)),
                      problems::reaches_target(problem, r) ? "1" : "0"};
@@ -87,24 +80,25 @@ BatchOutcome simulate_row(const BatchRow& row, const problems::Problem& problem,
 }  // namespace
 
 std::string check_shot_inputs(const phys::Shot& shot, const ShotNames& names) {
-  if (!std::isfinite(shot.speed) || !(shot.speed > 0.0))
-    return describe(names.speed, "must be positive and finite (m/s)", shot.speed);
-  if (!std::isfinite(shot.aim_deg))
-    return describe(names.aim, "must be finite (deg)", shot.aim_deg);
-  if (!std::isfinite(shot.topspin_k))
-    return describe(names.topspin, "must be finite", shot.topspin_k);
-  if (!std::isfinite(shot.sidespin_k))
-    return describe(names.sidespin, "must be finite", shot.sidespin_k);
-  return {};
+  const phys::Validation e = shot.validate();
+  if (!e) return {};
+  const FieldName by_field[] = {{{"speed"}, names.speed},
+                                {{"aim_deg"}, names.aim},
+                                {{"topspin_k"}, names.topspin},
+                                {{"sidespin_k"}, names.sidespin}};
+  return message_in(*e, by_field);
 }
 
 void write_shot_batch(const BatchInput& input, const problems::Problem& problem,
                       const phys::SimulationOptions& options, int threads, std::ostream& out) {
   phys::SimulationOptions row_options = options;
   row_options.record_path = false;  // only the outcome is written
+  const phys::CompiledScene scene(problem.scene);
   std::vector<BatchOutcome> outcomes(input.rows.size());
-  parallel_for(input.rows.size(), thread_count(threads, input.rows.size()),
-               [&](size_t i) { outcomes[i] = simulate_row(input.rows[i], problem, row_options); });
+  phys::parallel_for(input.rows.size(), phys::thread_count(threads, input.rows.size()),
+                     [&](size_t i, unsigned) {
+                       outcomes[i] = simulate_row(input.rows[i], problem, scene, row_options);
+                     });
 
   out << kShotBatchHeader << ',' << kShotBatchResultHeader << '\n';
   write_batch_rows(input, kInputColumns, std::move(outcomes), out);

@@ -1,6 +1,7 @@
 #include "simulate_command.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -99,10 +100,8 @@ TargetReport target_report(const prob::Problem& problem, const phys::Shot& shot,
 void write_text(std::ostream& out, const prob::Problem& problem, const phys::Shot& shot,
                 const phys::SimulationOptions& options, const phys::ShotResult& r,
                 const std::string& svg_file) {
-  const auto line = [&](const char* label, const std::string& text) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "%-16s", label);
-    out << buf << text << '\n';
+  const auto line = [&](std::string_view label, const std::string& text) {
+    report_line(out, label, text);
   };
   const phys::Scene& scene = problem.scene;
   const double spin_unit = shot.speed / scene.radius();  // rad/s per unit of k
@@ -121,8 +120,8 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
        "x = " + number(r.final_position.x, "m") + ", y = " + number(r.final_position.y, "m"));
   line("duration", number(r.duration, "s"));
   line("cushion hits", std::to_string(r.cushion_hits));
-  line("pocketed", r.pocketed ? "yes" : "no");
-  line("hit obstacle", r.hit_obstacle ? "yes" : "no");
+  line("pocketed", r.status == phys::ShotStatus::pocketed ? "yes" : "no");
+  line("hit obstacle", r.status == phys::ShotStatus::hit_obstacle ? "yes" : "no");
   line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
                      ", tolerance " + number(problem.tolerance, "m"));
   if (std::isfinite(target.miss))
@@ -147,13 +146,13 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
   if (!svg_file.empty()) line("drawing", svg_file);
 
   line("events", std::to_string(r.events.size()) + " (speed and motion just after each event)");
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "  %3s  %-14s %9s %9s %9s %11s  %-8s %s", "#", "event", "t (s)",
+  std::string buf;
+  buf = fmt::format("  {:>3}  {:<14} {:>9} {:>9} {:>9} {:>11}  {:<8} {}", "#", "event", "t (s)",
                 "x (m)", "y (m)", "v (m/s)", "then", "detail");
   out << buf << '\n';
   for (size_t i = 0; i < r.events.size(); ++i) {
     const phys::ShotEvent& e = r.events[i];
-    std::snprintf(buf, sizeof buf, "  %3zu  %-14s %9.4f %9.4f %9.4f %11.4f  %-8s ", i,
+    buf = fmt::format("  {:3}  {:<14} {:9.4f} {:9.4f} {:9.4f} {:11.4f}  {:<8} ", i,
                   phys::to_string(e.type), e.time, e.position.x, e.position.y, speed_of(e),
                   motion_after(r, e));
     std::string row = buf + event_detail(problem, e);
@@ -212,8 +211,8 @@ void write_json(std::ostream& out, const prob::Problem& problem, const phys::Sho
   j["final_position"] = vec(r.final_position);
   j["duration"] = r.duration;
   j["cushion_hits"] = r.cushion_hits;
-  j["pocketed"] = r.pocketed;
-  j["hit_obstacle"] = r.hit_obstacle;
+  j["pocketed"] = r.status == phys::ShotStatus::pocketed;
+  j["hit_obstacle"] = r.status == phys::ShotStatus::hit_obstacle;
   j["cue_ball"] = vec(problem.cue_ball);
   j["target"] = vec(problem.target);
   j["tolerance"] = problem.tolerance;
@@ -260,8 +259,8 @@ TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
   d.target = TargetZone{problem.target, problem.tolerance};
   d.paths.push_back({r.path, r.events, false});
 
-  char buf[512];
-  std::snprintf(buf, sizeof buf, "%s: V = %.4g m/s, aim %.4g\u00b0, k_{T} = %.3g, k_{S} = %.3g",
+  std::string buf;
+  buf = fmt::format("{}: V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g}",
                 problem.name.c_str(), shot.speed, shot.aim_deg, shot.topspin_k, shot.sidespin_k);
   d.title = buf;
 
@@ -271,9 +270,8 @@ TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
   std::string outcome;
   switch (r.status) {
     case phys::ShotStatus::rest:
-      std::snprintf(buf, sizeof buf,
-                    "At rest at (%.4f, %.4f) m after %s and %.3g s; %.4g mm from the target "
-                    "(tolerance %.4g mm): %s the target zone%s.",
+      buf = fmt::format("At rest at ({:.4f}, {:.4f}) m after {} and {:.3g} s; {:.4g} mm from the target "
+                    "(tolerance {:.4g} mm): {} the target zone{}.",
                     r.final_position.x, r.final_position.y, cushions.c_str(), r.duration,
                     1000.0 * target.miss, 1000.0 * problem.tolerance,
                     target.in_zone ? "inside" : "outside",
@@ -281,12 +279,12 @@ TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
       break;
     case phys::ShotStatus::pocketed:
     case phys::ShotStatus::hit_obstacle:
-      std::snprintf(buf, sizeof buf, "%s at (%.4f, %.4f) m after %s and %.3g s.",
-                    r.pocketed ? "Pocketed" : "Hit an obstacle ball", r.final_position.x,
+      buf = fmt::format("{} at ({:.4f}, {:.4f}) m after {} and {:.3g} s.",
+                    r.status == phys::ShotStatus::pocketed ? "Pocketed" : "Hit an obstacle ball", r.final_position.x,
                     r.final_position.y, cushions.c_str(), r.duration);
       break;
     default:
-      std::snprintf(buf, sizeof buf, "Stopped (%s) after %s: %s", phys::to_string(r.status),
+      buf = fmt::format("Stopped ({}) after {}: {}", phys::to_string(r.status),
                     cushions.c_str(), r.message.c_str());
   }
   outcome = buf;
@@ -294,9 +292,8 @@ TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
   d.caption.push_back(outcome);
 
   const phys::CushionParams& b = problem.scene.ball_and_cushion;
-  std::snprintf(buf, sizeof buf,
-                "Table %.4g \u00d7 %.4g m between the cushion noses, ball R = %.4g mm, "
-                "cushion impacts: %s.",
+  buf = fmt::format("Table {:.4g} \u00d7 {:.4g} m between the cushion noses, ball R = {:.4g} mm, "
+                "cushion impacts: {}.",
                 problem.scene.length, problem.scene.width, 1000.0 * b.radius,
                 phys::to_string(phys::chosen_impact_method(problem.scene, options)));
   d.caption.push_back(buf);

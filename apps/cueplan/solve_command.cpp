@@ -1,6 +1,7 @@
 #include "solve_command.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -30,24 +31,24 @@ constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue st
 // Tip offsets as fractions of R, with their direction in words.
 std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) {
   const plan::TipOffset t = plan::tip_offset(shot);
-  return fixed("%.3f", std::abs(t.right)) + " R " + (t.right < 0.0 ? "left" : "right") +
-         " of centre, " + fixed("%.3f", std::abs(t.up)) + " R " + (t.up < 0.0 ? "below" : "above") +
+  return fmt::format("{:.3f}", std::abs(t.right)) + " R " + (t.right < 0.0 ? "left" : "right") +
+         " of centre, " + fmt::format("{:.3f}", std::abs(t.up)) + " R " + (t.up < 0.0 ? "below" : "above") +
          " centre (fractions of the ball radius; the spin "
          "limit is " +
-         fixed("%.3g", limits.spin_max / kSpinPerTipOffset) + " R)";
+         fmt::format("{:.3g}", limits.spin_max / kSpinPerTipOffset) + " R)";
 }
 
 std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) {
   if (!std::isfinite(p.miss_distance)) return "none: the ball did not come to rest on the table";
   const bool inside = p.miss_distance <= problem.tolerance;
-  return fixed("%.3g mm", 1000.0 * p.miss_distance) + " (tolerance " +
+  return fmt::format("{:.3g} mm", 1000.0 * p.miss_distance) + " (tolerance " +
          number(1000.0 * problem.tolerance, "mm") +
          "): " + (inside ? "inside the target zone" : "outside the target zone");
 }
 
 std::string success_text(const plan::PlannerOptions& options, double probability) {
   if (options.robustness_samples == 0) return "not estimated (--samples 0)";
-  return fixed("%.1f %%", 100.0 * probability) + " of " +
+  return fmt::format("{:.1f} %", 100.0 * probability) + " of " +
          std::to_string(options.robustness_samples) +
          " noisy strokes stop in the zone (noise: " + noise_text(options.noise) + ")";
 }
@@ -58,10 +59,8 @@ std::string success_text(const plan::PlannerOptions& options, double probability
 void write_text(std::ostream& out, const prob::Problem& problem,
                 const plan::PlannerOptions& options, const plan::PlanResult& r,
                 const std::string& svg_file) {
-  const auto line = [&](const char* label, const std::string& text) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "%-16s", label);
-    out << buf << text << '\n';
+  const auto line = [&](std::string_view label, const std::string& text) {
+    report_line(out, label, text);
   };
   const plan::PlannedShot& b = r.best;
   const phys::Shot& s = b.shot;
@@ -88,14 +87,14 @@ void write_text(std::ostream& out, const prob::Problem& problem,
   for (const ConstraintRow& c : rows) broken += std::string(c.state) == "broken" ? 1 : 0;
   line("constraints", broken == 0 ? "all met" : std::to_string(broken) + " broken");
   for (const ConstraintRow& c : rows) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "    %-13s %-8s", c.name, c.state);
+    std::string buf;
+    buf = fmt::format("    {:<13} {:<8}", c.name, c.state);
     out << buf << c.detail << '\n';
   }
   line("evaluations", std::to_string(r.evaluations) + " shot simulations (" +
                           std::to_string(r.local_searches) + " local searches, " +
                           std::to_string(r.converged_searches) + " converged)");
-  line("time", fixed("%.3g s", r.time_s));
+  line("time", fmt::format("{:.3g} s", r.time_s));
   line("search",
        std::string(plan::to_string(options.global)) + " then " + plan::to_string(options.local) +
            " from " + std::to_string(options.local_starts) + " starts; budget " +
@@ -111,20 +110,20 @@ void write_text(std::ostream& out, const prob::Problem& problem,
                                               : std::to_string(r.alternatives.size()) +
                                                     " (other families, best first)");
   if (r.alternatives.empty()) return;
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "  %2s %8s %10s %7s %7s %10s %8s  %-6s %-28s %s", "#", "V (m/s)",
+  std::string buf;
+  buf = fmt::format("  {:>2} {:>8} {:>10} {:>7} {:>7} {:>10} {:>8}  {:<6} {:<28} {}", "#", "V (m/s)",
                 "aim (deg)", "k_T", "k_S", "miss (mm)", "success", "solves", "route", "stroke");
   out << buf << '\n';
   for (size_t i = 0; i < r.alternatives.size(); ++i) {
     const plan::PlannedShot& a = r.alternatives[i];
     const std::string miss =
-        std::isfinite(a.miss_distance) ? fixed("%.3g", 1000.0 * a.miss_distance) : "-";
+        std::isfinite(a.miss_distance) ? fmt::format("{:.3g}", 1000.0 * a.miss_distance) : "-";
     const std::string success =
-        options.robustness_samples == 0 ? "-" : fixed("%.1f %%", 100.0 * a.success_probability);
+        options.robustness_samples == 0 ? "-" : fmt::format("{:.1f} %", 100.0 * a.success_probability);
     std::string route = route_text(problem.scene, a.route);
     if (a.outcome != phys::ShotStatus::rest)
       route += std::string(", ") + phys::to_string(a.outcome);
-    std::snprintf(buf, sizeof buf, "  %2zu %8.4f %10.3f %7.3f %7.3f %10s %8s  %-6s %-28s %s", i + 1,
+    buf = fmt::format("  {:2} {:8.4f} {:10.3f} {:7.3f} {:7.3f} {:>10} {:>8}  {:<6} {:<28} {}", i + 1,
                   a.shot.speed, a.shot.aim_deg, a.shot.topspin_k, a.shot.sidespin_k, miss.c_str(),
                   success.c_str(), a.solves ? "yes" : "no", route.c_str(),
                   plan::describe_stroke(a.shot).c_str());
@@ -221,22 +220,22 @@ TableDrawing drawing_of(const prob::Problem& problem, const plan::PlannerOptions
     d.faint_legend = std::to_string(r.alternatives.size()) +
                      (r.alternatives.size() == 1 ? " alternative stroke" : " alternative strokes");
 
-  char buf[512];
-  std::snprintf(buf, sizeof buf, "%s: %s, aim %.4g\u00b0", problem.name.c_str(),
+  std::string buf;
+  buf = fmt::format("{}: {}, aim {:.4g}\u00b0", problem.name.c_str(),
                 plan::describe_stroke(b.shot).c_str(), b.shot.aim_deg);
   d.title = buf;
-  std::snprintf(buf, sizeof buf,
-                "%s. V = %.4g m/s, aim %.4g\u00b0, k_{T} = %.3g, k_{S} = %.3g (tip %.3f R right, "
-                "%.3f R up).",
-                r.status == plan::PlanStatus::solved        ? "Solved"
-                : r.status == plan::PlanStatus::unreachable ? "Unreachable; the nearest stroke"
-                                                            : "Budget exhausted; the best stroke",
+  buf = fmt::format("{}. V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g} (tip {:.3f} R right, "
+                "{:.3f} R up).",
+                r.status == plan::PlanStatus::solved ? "Solved"
+                : r.status == plan::PlanStatus::no_solution_found
+                    ? "No solution found; the nearest stroke"
+                    : "Budget exhausted; the best stroke",
                 b.shot.speed, b.shot.aim_deg, b.shot.topspin_k, b.shot.sidespin_k,
                 plan::tip_offset(b.shot).right, plan::tip_offset(b.shot).up);
   d.caption.push_back(buf);
   std::string outcome;
   if (std::isfinite(b.miss_distance)) {
-    std::snprintf(buf, sizeof buf, "Stops %.3g mm from the target after %s",
+    buf = fmt::format("Stops {:.3g} mm from the target after {}",
                   1000.0 * b.miss_distance, route_text(problem.scene, b.route).c_str());
     outcome = buf;
   } else {
@@ -244,7 +243,7 @@ TableDrawing drawing_of(const prob::Problem& problem, const plan::PlannerOptions
               route_text(problem.scene, b.route);
   }
   if (options.robustness_samples > 0)
-    outcome += "; " + fixed("%.0f %%", 100.0 * b.success_probability) +
+    outcome += "; " + fmt::format("{:.0f} %", 100.0 * b.success_probability) +
                " of noisy strokes succeed (noise \u00d7" + number(options.noise.scale) + ")";
   d.caption.push_back(outcome + ".");
   if (!r.alternatives.empty())
@@ -289,9 +288,9 @@ SolveCommand::SolveCommand(CLI::App& parent) {
       ->group(output);
 
   c.footer(
-      "Status: solved (exit 0); unreachable - the search converged everywhere it looked "
-      "without reaching the target - or budget_exhausted (exit 1; the best stroke found is "
-      "still reported); bad input exits 2.\n"
+      "Status: solved (exit 0); no_solution_found - the search converged everywhere it "
+      "looked without reaching the target, a strong hint but no proof - or budget_exhausted "
+      "(exit 1; the best stroke found is still reported); bad input exits 2.\n"
       "Example: cueplan solve problems/one_rail_position.yaml --seed 7 --svg plan.svg");
 }
 

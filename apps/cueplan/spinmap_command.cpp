@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -19,7 +20,7 @@
 #include "cueplan/problems/problem.hpp"
 #include "exit_codes.hpp"
 #include "output_file.hpp"
-#include "parallel.hpp"
+#include "cueplan/physics/parallel.hpp"
 #include "shot_words.hpp"
 #include "spin_map_drawing.hpp"
 
@@ -115,8 +116,8 @@ const plan::SpinMapPoint* nearest(const plan::SpinMap& map, const prob::Limits& 
 }
 
 std::string tip_words(double right, double up) {
-  return fixed("%.3f", std::abs(right)) + " R " + (right < 0.0 ? "left" : "right") + ", " +
-         fixed("%.3f", std::abs(up)) + " R " + (up < 0.0 ? "below" : "above");
+  return fmt::format("{:.3f}", std::abs(right)) + " R " + (right < 0.0 ? "left" : "right") + ", " +
+         fmt::format("{:.3f}", std::abs(up)) + " R " + (up < 0.0 ? "below" : "above");
 }
 
 // A range of tip offsets along one axis in words, e.g. "from 0.1 R left to 0.2 R right of
@@ -124,7 +125,7 @@ std::string tip_words(double right, double up) {
 std::string offset_range(double lo, double hi, const char* negative, const char* positive,
                          const char* centre) {
   const auto side = [&](double v) { return v < 0.0 ? negative : positive; };
-  const auto amount = [](double v) { return fixed("%.3g", std::abs(v)) + " R"; };
+  const auto amount = [](double v) { return fmt::format("{:.3g}", std::abs(v)) + " R"; };
   if (lo == hi) return amount(lo) + " " + side(lo) + centre;
   if ((lo < 0.0) == (hi < 0.0) || lo == 0.0) {
     const double near = lo < 0.0 ? hi : lo;
@@ -162,10 +163,8 @@ std::string source_text(const StrokeSource& source) {
 void write_text(std::ostream& out, const prob::Problem& problem, const plan::SpinMap& map,
                 const StrokeSource& source, const phys::SimulationOptions& simulation,
                 const std::string& file, double seconds) {
-  const auto line = [&](const char* label, const std::string& text) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "%-16s", label);
-    out << buf << text << '\n';
+  const auto line = [&](std::string_view label, const std::string& text) {
+    report_line(out, label, text);
   };
   const prob::Limits& limits = problem.limits;
   line("problem", problem.name + "  (" + problem.source + ")");
@@ -182,8 +181,8 @@ void write_text(std::ostream& out, const prob::Problem& problem, const plan::Spi
   if (map.landing > 0) {
     const LandingRange r = landing_range(map);
     line("landing spins",
-         "k_T " + fixed("%.3g", r.kt_min) + " to " + fixed("%.3g", r.kt_max) + ", k_S " +
-             fixed("%.3g", r.ks_min) + " to " + fixed("%.3g", r.ks_max) + ": tip " +
+         "k_T " + fmt::format("{:.3g}", r.kt_min) + " to " + fmt::format("{:.3g}", r.kt_max) + ", k_S " +
+             fmt::format("{:.3g}", r.ks_min) + " to " + fmt::format("{:.3g}", r.ks_max) + ": tip " +
              offset_range(r.ks_min / kSpinPerTipOffset, r.ks_max / kSpinPerTipOffset, "left",
                           "right", " of centre") +
              ", " +
@@ -191,7 +190,7 @@ void write_text(std::ostream& out, const prob::Problem& problem, const plan::Spi
                           "above", " centre"));
   }
   if (const plan::SpinMapPoint* p = nearest(map, limits))
-    line("nearest", fixed("%.3g mm", 1000.0 * p->miss_distance) + " from the target with k_T = " +
+    line("nearest", fmt::format("{:.3g} mm", 1000.0 * p->miss_distance) + " from the target with k_T = " +
                         number(p->topspin_k) + ", k_S = " + number(p->sidespin_k) + " (tip " +
                         tip_words(p->tip_right, p->tip_up) + " centre)");
   const Counts c = counts_of(map, limits);
@@ -204,7 +203,7 @@ void write_text(std::ostream& out, const prob::Problem& problem, const plan::Spi
            std::to_string(c.of(SpinCellKind::no_result)) + " without an outcome");
   line("method", method_text(simulation, problem.scene));
   line("picture", file);
-  line("time", fixed("%.3g s", seconds));
+  line("time", fmt::format("{:.3g} s", seconds));
 }
 
 ordered_json point_json(const plan::SpinMapPoint& p) {
@@ -276,14 +275,12 @@ SpinMapPicture picture_of(const prob::Problem& problem, const plan::SpinMap& map
   SpinMapPicture picture;
   picture.problem = problem;
   picture.map = map;
-  char buf[512];
-  std::snprintf(buf, sizeof buf, "What spin lands here? %s: V = %.4g m/s, aim %.4g\u00b0",
+  std::string buf;
+  buf = fmt::format("What spin lands here? {}: V = {:.4g} m/s, aim {:.4g}\u00b0",
                 problem.name.c_str(), map.speed, map.aim_deg);
   picture.title = buf;
-  std::snprintf(
-      buf, sizeof buf,
-      "Each cell is one tip offset struck at this speed and aim, coloured by how far from "
-      "the target the cue ball stops; %d of %zu spins land (outlined).",
+  buf = fmt::format("Each cell is one tip offset struck at this speed and aim, coloured by how far from "
+      "the target the cue ball stops; {} of {} spins land (outlined).",
       map.landing, map.points.size());
   picture.caption.push_back(buf);
   if (source.planned)
@@ -463,7 +460,7 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
 
   plan::SpinMapOptions map_options;
   map_options.grid = args_.grid;
-  map_options.threads = static_cast<int>(thread_count(
+  map_options.threads = static_cast<int>(phys::thread_count(
       args_.threads, static_cast<size_t>(args_.grid) * static_cast<size_t>(args_.grid)));
   map_options.simulation = simulation;
   ProgressBar bar(err, std::string(kCommandName) + ": simulating " + std::to_string(args_.grid) +

@@ -1,7 +1,8 @@
 #include "cueplan/physics/cushion_impact.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "cueplan/physics/impact_table.hpp"
@@ -12,26 +13,20 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-std::string describe(const char* field, const char* rule, double value) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field, rule, value);
-  return buf;
-}
-
 bool positive_finite(double x) { return std::isfinite(x) && x > 0.0; }
 
-std::string validate_state(const BallState& in) {
+Validation validate_state(const BallState& in) {
   const Vec3& v = in.velocity;
   const Vec3& w = in.spin;
-  if (!std::isfinite(v.x)) return describe("velocity.x", "must be finite (m/s)", v.x);
-  if (!std::isfinite(v.y)) return describe("velocity.y", "must be finite (m/s)", v.y);
-  if (!std::isfinite(w.x)) return describe("spin.x", "must be finite (rad/s)", w.x);
-  if (!std::isfinite(w.y)) return describe("spin.y", "must be finite (rad/s)", w.y);
-  if (!std::isfinite(w.z)) return describe("spin.z", "must be finite (rad/s)", w.z);
-  if (v.z != 0.0) return describe("velocity.z", "must be 0: the ball rolls on the cloth", v.z);
+  if (!std::isfinite(v.x)) return invalid({"velocity", "x"}, "must be finite (m/s)", v.x);
+  if (!std::isfinite(v.y)) return invalid({"velocity", "y"}, "must be finite (m/s)", v.y);
+  if (!std::isfinite(w.x)) return invalid({"spin", "x"}, "must be finite (rad/s)", w.x);
+  if (!std::isfinite(w.y)) return invalid({"spin", "y"}, "must be finite (rad/s)", w.y);
+  if (!std::isfinite(w.z)) return invalid({"spin", "z"}, "must be finite (rad/s)", w.z);
+  if (v.z != 0.0) return invalid({"velocity", "z"}, "must be 0: the ball rolls on the cloth", v.z);
   if (!(v.y > 0.0))
-    return describe("velocity.y", "must be positive: the ball must move into the cushion",
-                    v.y);
+    return invalid({"velocity", "y"}, "must be positive: the ball must move into the cushion",
+                   v.y);
   return {};
 }
 
@@ -42,38 +37,40 @@ double CushionParams::cos_theta() const {
   return std::sqrt(1.0 - s * s);
 }
 
-std::string CushionParams::validate() const {
-  if (!positive_finite(mass)) return describe("mass", "must be positive and finite (kg)", mass);
+Validation CushionParams::validate() const {
+  if (!positive_finite(mass)) return invalid({"mass"}, "must be positive and finite (kg)", mass);
   if (!positive_finite(radius))
-    return describe("radius", "must be positive and finite (m)", radius);
+    return invalid({"radius"}, "must be positive and finite (m)", radius);
   if (!std::isfinite(cushion_height) || !(cushion_height > radius) ||
       !(cushion_height < 2.0 * radius))
-    return describe("cushion_height",
-                    "must lie between radius and 2*radius (m): the cushion touches the ball "
-                    "above its equator",
-                    cushion_height);
+    return invalid({"cushion_height"},
+                   "must lie between radius and 2*radius (m): the cushion touches the ball "
+                   "above its equator",
+                   cushion_height);
   if (!std::isfinite(mu_cushion) || mu_cushion < 0.0)
-    return describe("mu_cushion", "must be finite and not negative", mu_cushion);
+    return invalid({"mu_cushion"}, "must be finite and not negative", mu_cushion);
   if (!std::isfinite(mu_table) || mu_table < 0.0)
-    return describe("mu_table", "must be finite and not negative", mu_table);
+    return invalid({"mu_table"}, "must be finite and not negative", mu_table);
   if (!std::isfinite(restitution) || !(restitution > 0.0) || restitution > 1.0)
-    return describe("restitution", "must lie in (0, 1]", restitution);
+    return invalid({"restitution"}, "must lie in (0, 1]", restitution);
   if (!positive_finite(rigid_speed_limit))
-    return describe("rigid_speed_limit", "must be positive and finite (m/s)",
-                    rigid_speed_limit);
+    return invalid({"rigid_speed_limit"}, "must be positive and finite (m/s)", rigid_speed_limit);
   const double s = sin_theta();
   const double c = cos_theta();
   // The table must keep pushing up: p_C = s - c fIy' > 0 for any |fIy'| <= mu_w.
   if (!(mu_cushion < s / c))
-    return describe("mu_cushion",
-                    "must be below tan(theta) of the cushion contact, or the cushion lifts "
-                    "the ball off the cloth",
-                    mu_cushion);
-  if (!(detail::worst_normal_deceleration(detail::Geometry::from(*this)) > 0.0))
-    return describe("mu_table",
-                    "is too large together with mu_cushion: friction could stop the cushion "
-                    "from turning the ball round",
-                    mu_table);
+    return invalid({"mu_cushion"},
+                   "must be below tan(theta) of the cushion contact, or the cushion lifts the "
+                   "ball off the cloth",
+                   mu_cushion);
+  if (!(detail::worst_normal_deceleration(detail::Geometry::from(*this)) > 0.0)) {
+    ValidationError e = invalid({"mu_table"},
+                                "is too large together with {other}: friction could stop the "
+                                "cushion from turning the ball round",
+                                mu_table);
+    e.other = FieldPath{"mu_cushion"};
+    return e;
+  }
   return {};
 }
 
@@ -204,42 +201,50 @@ bool tolerance_in_range(double tolerance) {
   return std::isfinite(tolerance) && tolerance >= 1e-15 && tolerance <= 1e-2;
 }
 
-ImpactResult invalid(std::string why) {
+ImpactResult invalid_result(ValidationError error) {
   ImpactResult r;
   r.status = ImpactStatus::invalid_input;
-  r.message = std::move(why);
+  r.message = error.message();
+  r.error = std::move(error);
   return r;
 }
 
 }  // namespace
 
+Validation ImpactOptions::validate() const {
+  if (method != ImpactMethod::exact && method != ImpactMethod::paper &&
+      method != ImpactMethod::table)
+    return invalid({"method"}, "must be exact, paper or table", static_cast<int>(method));
+  if (paper_steps < 1) return invalid({"paper_steps"}, "must be at least 1", paper_steps);
+  if (!tolerance_in_range(tolerance))
+    return invalid({"tolerance"}, "must lie in [1e-15, 1e-2]", tolerance);
+  if (max_steps < 1) return invalid({"max_steps"}, "must be at least 1", max_steps);
+  if (table_fallback_tolerance != 0.0 && !tolerance_in_range(table_fallback_tolerance))
+    return invalid({"table_fallback_tolerance"},
+                   "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
+                   table_fallback_tolerance);
+  return {};
+}
+
 ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
                             const ImpactOptions& options) {
-  if (std::string why = params.validate(); !why.empty()) return invalid(std::move(why));
-  if (std::string why = validate_state(incoming); !why.empty()) return invalid(std::move(why));
+  if (Validation e = params.validate()) return invalid_result(std::move(*e));
+  if (Validation e = validate_state(incoming)) return invalid_result(std::move(*e));
+  if (Validation e = options.validate()) return invalid_result(std::move(*e));
+  if (options.method == ImpactMethod::table && options.table == nullptr)
+    return invalid_result(invalid({"table"}, "must be a built impact table for method table"));
 
   // The exact method's tolerance: its own, or for the impacts the table does not
   // answer, the one asked for the table's fallbacks.
   double tolerance = options.tolerance;
-  const char* tolerance_field = "tolerance";
   if (options.method == ImpactMethod::table) {
-    if (options.table == nullptr) return invalid("method table needs a built impact table");
-    const double fallback = options.table_fallback_tolerance;
-    if (fallback != 0.0 && !tolerance_in_range(fallback))
-      return invalid(describe("table_fallback_tolerance",
-                              "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
-                              fallback));
     ImpactResult r;
     if (options.table->resolve(params, incoming, &r)) return r;
     // Outside the table's domain or parameters, or a fallback cell: the exact method,
     // as accurate as the table.
+    const double fallback = options.table_fallback_tolerance;
     tolerance = fallback != 0.0 ? fallback : options.table->fallback_tolerance();
-    tolerance_field = "table_fallback_tolerance";
   }
-  if (options.method == ImpactMethod::paper && options.paper_steps < 1)
-    return invalid(describe("paper_steps", "must be at least 1", options.paper_steps));
-  if (options.method != ImpactMethod::paper && !tolerance_in_range(tolerance))
-    return invalid(describe(tolerance_field, "must lie in [1e-15, 1e-2]", tolerance));
 
   detail::ScaledImpact impact;
   impact.geometry = detail::Geometry::from(params);
@@ -263,8 +268,8 @@ ImpactResult resolve_impact(const CushionParams& params, const BallState& incomi
   r.method_used = used;
   if (r.status == ImpactStatus::ok && incoming.velocity.y > params.rigid_speed_limit) {
     r.status = ImpactStatus::rigid_limit_exceeded;
-    r.message = describe("velocity.y", "is above the rigid-cushion limit (m/s)",
-                         incoming.velocity.y);
+    r.message = fmt::format("velocity.y is above the rigid-cushion limit (m/s), got {:.10g}",
+                            incoming.velocity.y);
   }
   return r;
 }

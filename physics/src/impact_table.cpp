@@ -9,6 +9,7 @@
 //   3, 4. the same on the natural-roll plane k_T = 1 (nodes and edge midpoints in
 //      each alpha line, then centres and the other edge midpoints per slab).
 #include "cueplan/physics/impact_table.hpp"
+#include "cueplan/physics/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -275,14 +276,8 @@ void assign_nodes(std::vector<double>* nodes, size_t n, double fill) {
 // Runs work(i, thread) for i in [0, count) on `threads` threads (this one included).
 template <class Work>
 void parallel_for(int threads, int count, Work&& work) {
-  std::atomic<int> next{0};
-  auto worker = [&](int id) {
-    for (int i = next++; i < count; i = next++) work(i, id);
-  };
-  std::vector<std::thread> pool;
-  for (int id = 1; id < threads; ++id) pool.emplace_back(worker, id);
-  worker(0);
-  for (std::thread& th : pool) th.join();
+  physics::parallel_for(static_cast<size_t>(count), static_cast<unsigned>(threads),
+                        [&](size_t i, unsigned id) { work(static_cast<int>(i), static_cast<int>(id)); });
 }
 
 }  // namespace
@@ -302,11 +297,9 @@ class ImpactTableAccess {
   }
 };
 
-std::string ImpactTableOptions::validate() const {
-  char buf[200];
-  auto fail = [&](const char* field, const char* rule, double value) {
-    std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field, rule, value);
-    return std::string(buf);
+Validation ImpactTableOptions::validate() const {
+  auto fail = [](const char* field, const char* rule, double value) {
+    return invalid({field}, rule, value);
   };
   if (alpha_nodes < 4) return fail("alpha_nodes", "must be at least 4", alpha_nodes);
   if (topspin_nodes < 4) return fail("topspin_nodes", "must be at least 4", topspin_nodes);
@@ -524,7 +517,7 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
   ImpactTable t;
   t.options_ = options;
   t.params_ = params;
-  if (!options.validate().empty() || !params.validate().empty()) return t;
+  if (options.validate() || params.validate()) return t;
   lay_out(&t);
 
   // The exact method on the ball of these params at V0 = 1, never flagged.
@@ -1004,7 +997,7 @@ std::optional<ImpactTable> ImpactTableAccess::load(const std::string& path) {
   for (int64_t* n :
        {&e.cells, &e.fallback_cells, &e.roll_cells, &e.roll_fallback_cells, &e.test_points})
     if (!in.get(n)) return std::nullopt;
-  if (!o.validate().empty() || !p.validate().empty()) return std::nullopt;
+  if (o.validate() || p.validate()) return std::nullopt;
   lay_out(&t);
 
   // Sizes must be the ones these options lay out, and fill the file exactly.
@@ -1047,53 +1040,8 @@ std::optional<ImpactTable> ImpactTable::load(const std::string& path) {
   return ImpactTableAccess::load(path);
 }
 
-ImpactTable ImpactTable::load_or_build(const CushionParams& params,
-                                       const ImpactTableOptions& options,
-                                       const std::string& cache_dir, std::string* note) {
-  auto say = [note](std::string text) {
-    if (note) *note = std::move(text);
-  };
-  if (cache_dir.empty()) {
-    ImpactTable t = build(params, options);
-    say(t.empty() ? "impact table not built: invalid params or options"
-                  : "built impact table (no cache directory)");
-    return t;
-  }
-  const std::filesystem::path path =
-      std::filesystem::path(cache_dir) / cache_file_name(params, options);
-  std::error_code ec;
-  const bool existed = std::filesystem::exists(path, ec);
-  std::optional<ImpactTable> cached = load(path.string());
-  if (cached && cached->covers(params) &&
-      ImpactTableAccess::same_shape(cached->options_, options)) {
-    cached->options_.threads = options.threads;
-    say("loaded impact table " + path.string());
-    return std::move(*cached);
-  }
-  ImpactTable t = build(params, options);
-  if (t.empty()) {
-    say("impact table not built: invalid params or options");
-    return t;
-  }
-  std::filesystem::create_directories(cache_dir, ec);
-  const bool saved = t.save(path.string());
-  say(std::string(existed ? "rebuilt impact table (the cached file was unusable)"
-                          : "built impact table") +
-      (saved ? ", saved to " : ", could not save to ") + path.string());
-  return t;
-}
-
-std::string default_table_cache_dir() {
-  auto set = [](const char* name) -> const char* {
-    const char* value = std::getenv(name);
-    return value != nullptr && *value != '\0' ? value : nullptr;
-  };
-  if (const char* dir = set("CUEPLAN_CACHE_DIR")) return dir;
-  if (const char* dir = set("XDG_CACHE_HOME")) return std::string(dir) + "/cueplan";
-  if (const char* dir = set("HOME")) return std::string(dir) + "/.cache/cueplan";
-  std::error_code ec;
-  const std::filesystem::path temp = std::filesystem::temp_directory_path(ec);
-  return ((ec ? std::filesystem::path("/tmp") : temp) / "cueplan").string();
+bool ImpactTable::built_with(const ImpactTableOptions& options) const {
+  return ImpactTableAccess::same_shape(options_, options);
 }
 
 }  // namespace cueplan::physics

@@ -1,6 +1,7 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -19,12 +20,6 @@ inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
-
-std::string describe(const std::string& field, const char* rule, double value) {
-  char buf[320];
-  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field.c_str(), rule, value);
-  return buf;
-}
 
 // The four cushions: outward normal n (from the ball into the cushion) and the
 // value of n . p at which the ball's centre touches the cushion.
@@ -165,83 +160,113 @@ Vec2 PathSegment::at(double t) const {
   return {p0.x + v0.x * dt + 0.5 * accel.x * dt * dt, p0.y + v0.y * dt + 0.5 * accel.y * dt * dt};
 }
 
-std::string Scene::validate() const {
-  if (std::string why = ball_and_cushion.validate(); !why.empty()) return why;
+Validation Scene::validate() const {
+  if (Validation e = ball_and_cushion.validate()) return e->under({"ball_and_cushion"});
   if (!std::isfinite(length) || !(length > 0.0))
-    return describe("table.length", "must be positive and finite (m)", length);
+    return invalid({"length"}, "must be positive and finite (m)", length);
   if (!std::isfinite(width) || !(width > 0.0))
-    return describe("table.width", "must be positive and finite (m)", width);
+    return invalid({"width"}, "must be positive and finite (m)", width);
   const double off = contact_offset();
-  if (!(length > 2.0 * off) || !(width > 2.0 * off))
-    return describe("table.length", "and table.width must leave room for a ball (m)",
-                    std::min(length, width));
+  if (!(length > 2.0 * off) || !(width > 2.0 * off)) {
+    // The shorter side is the one that leaves no room; the ball's radius sets the room
+    // it needs, so it is the rule's other field.
+    const bool length_short = !(length > 2.0 * off);
+    ValidationError e = invalid({length_short ? "length" : "width"},
+                                fmt::format("must leave room for a ball: more than 2 R cos(theta) "
+                                            "= {:.4g} m ({{other}} R = {:.4g} m)",
+                                            2.0 * off, radius()),
+                                length_short ? length : width);
+    e.other = FieldPath{"ball_and_cushion", "radius"};
+    return e;
+  }
   if (!std::isfinite(cloth.mu_roll) || !(cloth.mu_roll > 0.0))
-    return describe("physics.mu_roll",
-                    "must be positive and finite: without rolling resistance a ball never stops",
-                    cloth.mu_roll);
+    return invalid({"cloth", "mu_roll"},
+                   "must be positive and finite: without rolling resistance a ball never stops",
+                   cloth.mu_roll);
   if (!std::isfinite(cloth.mu_slide) || !(cloth.mu_slide > 0.0))
-    return describe("physics.mu_slide",
-                    "must be positive and finite: without sliding friction a ball never rolls",
-                    cloth.mu_slide);
+    return invalid({"cloth", "mu_slide"},
+                   "must be positive and finite: without sliding friction a ball never rolls",
+                   cloth.mu_slide);
   if (!std::isfinite(cloth.mu_spin) || cloth.mu_spin < 0.0)
-    return describe("physics.mu_spin", "must be finite and not negative", cloth.mu_spin);
+    return invalid({"cloth", "mu_spin"}, "must be finite and not negative", cloth.mu_spin);
   if (!std::isfinite(cloth.gravity) || !(cloth.gravity > 0.0))
-    return describe("physics.gravity", "must be positive and finite (m/s^2)", cloth.gravity);
+    return invalid({"cloth", "gravity"}, "must be positive and finite (m/s^2)", cloth.gravity);
   for (size_t i = 0; i < pockets.size(); ++i) {
     const Pocket& k = pockets[i];
-    const std::string name = "pockets[" + std::to_string(i) + "]";
+    const int index = static_cast<int>(i);
     if (!std::isfinite(k.centre.x) || !std::isfinite(k.centre.y))
-      return describe(name + ".centre", "must be finite (m)", NAN);
+      return invalid({"pockets", index, "centre"}, "must be finite (m)",
+                     std::isfinite(k.centre.x) ? k.centre.y : k.centre.x);
     if (!std::isfinite(k.radius) || !(k.radius > 0.0))
-      return describe(name + ".radius", "must be positive and finite (m)", k.radius);
+      return invalid({"pockets", index, "radius"}, "must be positive and finite (m)", k.radius);
   }
   const double r = radius();
   for (size_t i = 0; i < obstacles.size(); ++i) {
-    const std::string name = "obstacles[" + std::to_string(i) + "]";
+    const FieldPath name{"obstacles", static_cast<int>(i)};
     const Vec2 o = obstacles[i];
     if (!std::isfinite(o.x) || !std::isfinite(o.y))
-      return describe(name, "must be finite (m)", std::isfinite(o.x) ? o.y : o.x);
+      return invalid(name, "must be finite (m)", std::isfinite(o.x) ? o.y : o.x);
     if (o.x < off || o.x > length - off || o.y < off || o.y > width - off)
-      return name + " lies off the table (its centre must be at least " +
-             std::to_string(off) + " m inside every cushion nose)";
+      return invalid(name, fmt::format("lies off the table (its centre must be at least {} m "
+                                       "inside every cushion nose)",
+                                       std::to_string(off)));
     for (size_t j = 0; j < i; ++j) {
-      if (norm(o - obstacles[j]) < 2.0 * r * (1.0 - 1e-9))
-        return name + " overlaps obstacles[" + std::to_string(j) + "]";
+      if (norm(o - obstacles[j]) < 2.0 * r * (1.0 - 1e-9)) {
+        ValidationError e = invalid(name, "overlaps {other}");
+        e.other = FieldPath{"obstacles", static_cast<int>(j)};
+        return e;
+      }
     }
   }
   return {};
 }
 
-std::string Scene::check_position(Vec2 p, const std::string& what) const {
-  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return what + " must be finite (m)";
+Validation Scene::check_position(Vec2 p, const FieldPath& what) const {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    return invalid(what, "must be finite (m)", std::isfinite(p.x) ? p.y : p.x);
   const double off = contact_offset();
-  if (p.x < off || p.x > length - off || p.y < off || p.y > width - off) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "%s (%.4g, %.4g) lies off the table: its centre must be within [%.4g, %.4g] "
-                  "x [%.4g, %.4g] m",
-                  what.c_str(), p.x, p.y, off, length - off, off, width - off);
-    return buf;
-  }
+  if (p.x < off || p.x > length - off || p.y < off || p.y > width - off)
+    return invalid(what, fmt::format("({:.4g}, {:.4g}) lies off the table: its centre must be "
+                                     "within [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m",
+                                     p.x, p.y, off, length - off, off, width - off));
   for (size_t i = 0; i < pockets.size(); ++i) {
-    if (norm(p - pockets[i].centre) < pockets[i].radius)
-      return what + " lies inside pocket " + std::to_string(i);
+    if (norm(p - pockets[i].centre) < pockets[i].radius) {
+      ValidationError e = invalid(what, "lies inside {other}");
+      e.other = FieldPath{"pockets", static_cast<int>(i)};
+      return e;
+    }
   }
   for (size_t i = 0; i < obstacles.size(); ++i) {
-    if (norm(p - obstacles[i]) < 2.0 * radius() * (1.0 - 1e-9))
-      return what + " overlaps obstacles[" + std::to_string(i) + "]";
+    if (norm(p - obstacles[i]) < 2.0 * radius() * (1.0 - 1e-9)) {
+      ValidationError e = invalid(what, "overlaps {other}");
+      e.other = FieldPath{"obstacles", static_cast<int>(i)};
+      return e;
+    }
   }
   return {};
 }
 
+std::vector<Pocket> standard_pockets(double length, double width, double radius) {
+  return {{{0.0, 0.0}, radius},   {{length / 2, 0.0}, radius},   {{length, 0.0}, radius},
+          {{0.0, width}, radius}, {{length / 2, width}, radius}, {{length, width}, radius}};
+}
+
 Scene snooker_scene() {
   Scene s;
-  const double r = 0.045;
-  s.pockets = {{{0.0, 0.0}, r},          {{s.length / 2, 0.0}, r}, {{s.length, 0.0}, r},
-               {{0.0, s.width}, r},      {{s.length / 2, s.width}, r},
-               {{s.length, s.width}, r}};
+  s.pockets = standard_pockets(s.length, s.width, kDefaultPocketRadius);
   return s;
 }
+
+Validation Shot::validate() const {
+  if (!std::isfinite(speed) || !(speed > 0.0))
+    return invalid({"speed"}, "must be positive and finite (m/s)", speed);
+  if (!std::isfinite(aim_deg)) return invalid({"aim_deg"}, "must be finite (deg)", aim_deg);
+  if (!std::isfinite(topspin_k)) return invalid({"topspin_k"}, "must be finite", topspin_k);
+  if (!std::isfinite(sidespin_k)) return invalid({"sidespin_k"}, "must be finite", sidespin_k);
+  return {};
+}
+
+CompiledScene::CompiledScene(Scene scene) : scene_(std::move(scene)), error_(scene_.validate()) {}
 
 const char* to_string(EventType type) {
   switch (type) {
@@ -286,233 +311,271 @@ ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& o
   return ImpactMethod::exact;
 }
 
-ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
-                    const SimulationOptions& options) {
-  ShotResult result;
-  auto fail = [&](ShotStatus status, std::string why) {
-    result.status = status;
-    result.message = std::move(why);
-    return result;
-  };
-  if (std::string why = scene.validate(); !why.empty())
-    return fail(ShotStatus::invalid_input, why);
-  if (std::string why = scene.check_position(cue_ball, "cue_ball"); !why.empty())
-    return fail(ShotStatus::invalid_input, why);
-  if (!std::isfinite(shot.speed) || !(shot.speed > 0.0))
-    return fail(ShotStatus::invalid_input,
-                describe("speed", "must be positive and finite (m/s)", shot.speed));
-  if (!std::isfinite(shot.aim_deg))
-    return fail(ShotStatus::invalid_input, describe("aim_deg", "must be finite", shot.aim_deg));
-  if (!std::isfinite(shot.topspin_k))
-    return fail(ShotStatus::invalid_input,
-                describe("topspin_k", "must be finite", shot.topspin_k));
-  if (!std::isfinite(shot.sidespin_k))
-    return fail(ShotStatus::invalid_input,
-                describe("sidespin_k", "must be finite", shot.sidespin_k));
+namespace {
+
+// The stroke's own inputs, checked on every call (the scene was checked when compiled).
+Validation check_stroke(const Scene& scene, Vec2 cue_ball, const Shot& shot,
+                        const SimulationOptions& options) {
+  if (Validation e = scene.check_position(cue_ball, {"cue_ball"})) return e;
+  if (Validation e = shot.validate()) return e->under({"shot"});
   if (options.max_events < 1)
-    return fail(ShotStatus::invalid_input,
-                describe("max_events", "must be at least 1", options.max_events));
+    return invalid({"max_events"}, "must be at least 1", options.max_events);
+  return {};
+}
 
-  const ClothModel cloth(scene);
-  const CushionParams& params = scene.ball_and_cushion;
-  const auto lines = cushion_lines(scene);
+// What ends the current piece of motion, and when.
+struct NextEvent {
+  EventType type = EventType::rest;
+  double after = kNever;  // s from now
+  int which = -1;         // cushion, pocket or obstacle index
+};
 
-  // The cheapest impact method that meets the accuracy asked for: the table where its
-  // measured error does, else the exact method at a tolerance that does (its error
-  // stays below about 100 tolerances, bench/README.md).
-  ImpactOptions impact;
-  impact.tolerance = std::clamp(options.impact_accuracy / 100.0, 1e-14, 1e-3);
-  impact.method = chosen_impact_method(scene, options);
-  if (impact.method == ImpactMethod::table) {
-    impact.table = options.table;
-    impact.table_fallback_tolerance = impact.tolerance;  // the accuracy asked for, as above
+// One shot from the strike to rest, as stages run in order for every piece of motion:
+//   1. next_event - the piece's own end (slide to roll, rest), the sidespin stop, then
+//                   the first contact before either (cushion, pocket, obstacle);
+//   2. advance    - the ball moves along the piece to that event (path recorded);
+//   3. resolve    - the event changes the ball's state (a cushion through the impact
+//                   model) and is logged; pockets, obstacles and failures end the shot.
+class ShotRun {
+ public:
+  ShotRun(const Scene& scene, const SimulationOptions& options, ShotResult* result)
+      : scene_(scene), options_(options), cloth_(scene), lines_(cushion_lines(scene)),
+        result_(result) {
+    // The cheapest impact method that meets the accuracy asked for: the table where its
+    // measured error does, else the exact method at a tolerance that does (its error
+    // stays below about 100 tolerances, bench/README.md).
+    impact_.tolerance = std::clamp(options.impact_accuracy / 100.0, 1e-14, 1e-3);
+    impact_.method = chosen_impact_method(scene, options);
+    if (impact_.method == ImpactMethod::table) {
+      impact_.table = options.table;
+      impact_.table_fallback_tolerance = impact_.tolerance;  // the accuracy asked for, as above
+    }
+    result_->impact_method = impact_.method;
   }
-  result.impact_method = impact.method;
 
   // Cue strike: speed along the aim, topspin about the horizontal axis perpendicular
   // to the motion (natural-roll sense), sidespin about z.
-  const double phi = shot.aim_deg * kDegree;
-  Ball b;
-  b.p = cue_ball;
-  b.v = {shot.speed * std::cos(phi), shot.speed * std::sin(phi)};
-  const double wt = shot.topspin_k * shot.speed / cloth.radius;
-  b.w = {-wt * std::sin(phi), wt * std::cos(phi), shot.sidespin_k * shot.speed / cloth.radius};
+  void strike(Vec2 cue_ball, const Shot& shot) {
+    const double phi = shot.aim_deg * kDegree;
+    b_.p = cue_ball;
+    b_.v = {shot.speed * std::cos(phi), shot.speed * std::sin(phi)};
+    const double wt = shot.topspin_k * shot.speed / cloth_.radius;
+    b_.w = {-wt * std::sin(phi), wt * std::cos(phi), shot.sidespin_k * shot.speed / cloth_.radius};
+    result_->events.reserve(16);
+    log(EventType::strike, -1, -1, 0.0);
+    check_cushions_ = cushions_in_reach();
+    result_->status = ShotStatus::rest;
+  }
 
-  double t = 0.0;
-  result.events.reserve(16);
-  auto log = [&](EventType type, int cushion, int index, double normal_speed) {
-    ShotEvent e;
-    e.type = type;
-    e.time = t;
-    e.position = b.p;
-    e.velocity = b.v;
-    e.spin = b.w;
-    e.cushion = cushion;
-    e.index = index;
-    e.normal_speed = normal_speed;
-    result.events.push_back(e);
-  };
-  log(EventType::strike, -1, -1, 0.0);
-
-  // Whether any cushion is still within reach; refreshed after every cushion.
-  auto cushions_in_reach = [&] {
-    const double d = reach(cloth, b);
-    for (const CushionLine& c : lines)
-      if (c.contact - dot(c.normal, b.p) <= d) return true;
-    return false;
-  };
-  bool check_cushions = cushions_in_reach();
-
-  result.status = ShotStatus::rest;
-  for (;;) {
-    if (static_cast<int>(result.events.size()) > options.max_events) {
-      result.status = ShotStatus::event_limit;
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "more than %d events before the ball came to rest",
-                    options.max_events);
-      result.message = buf;
-      break;
+  // Runs the stages until the ball rests or the shot ends otherwise.
+  void run() {
+    for (;;) {
+      if (static_cast<int>(result_->events.size()) > options_.max_events) {
+        result_->status = ShotStatus::event_limit;
+        result_->message =
+            fmt::format("more than {} events before the ball came to rest", options_.max_events);
+        break;
+      }
+      const Piece piece = piece_from(cloth_, b_);
+      if (piece.motion == Motion::resting) {
+        b_.v = {0.0, 0.0};
+        log(EventType::rest, -1, -1, 0.0);
+        break;
+      }
+      const NextEvent next = next_event(piece);
+      advance(piece, next.after);
+      resolve(next);
+      if (next.type == EventType::rest || result_->status != ShotStatus::rest) break;
     }
-    const Piece piece = piece_from(cloth, b);
-    if (piece.motion == Motion::resting) {
-      b.v = {0.0, 0.0};
-      log(EventType::rest, -1, -1, 0.0);
-      break;
-    }
+    result_->final_position = b_.p;
+    result_->duration = t_;
+  }
 
-    // The stages of one piece, in order: the motion's own end, the sidespin stop,
-    // then the first contact (cushion, pocket, obstacle) before either.
-    double horizon = piece.duration;
-    EventType next = piece.motion == Motion::sliding ? EventType::slide_to_roll : EventType::rest;
-    const double spin_stop = b.w.z != 0.0 ? std::abs(b.w.z) / cloth.spin_decel : kNever;
-    if (spin_stop < horizon) {
-      horizon = spin_stop;
-      next = EventType::spin_stop;
+ private:
+  // Stage 1.
+  NextEvent next_event(const Piece& piece) const {
+    NextEvent next;
+    next.after = piece.duration;
+    next.type = piece.motion == Motion::sliding ? EventType::slide_to_roll : EventType::rest;
+    const double spin_stop = b_.w.z != 0.0 ? std::abs(b_.w.z) / cloth_.spin_decel : kNever;
+    if (spin_stop < next.after) {
+      next.after = spin_stop;
+      next.type = EventType::spin_stop;
     }
-    const Quadratic q{b.p, b.v, 0.5 * piece.accel};
-    int which = -1;
-    if (check_cushions) {
+    const Quadratic q{b_.p, b_.v, 0.5 * piece.accel};
+    if (check_cushions_) {
       for (int i = 0; i < 4; ++i) {
-        const Vec2 n = lines[i].normal;
-        // n . p(t) - contact, negative on the table; contact when it rises to zero.
-        double c[3] = {dot(n, q.a0) - lines[i].contact, dot(n, q.a1), dot(n, q.a2)};
-        double hit = kNever;
-        if (c[0] >= 0.0) {
-          // Touching (or rounding past): on the line, so that a ball leaving the cushion
-          // is caught when friction on the cloth brings it back.
-          c[0] = 0.0;
-        }
-        if (c[0] == 0.0 && (c[1] > 0.0 || (c[1] == 0.0 && c[2] > 0.0))) {
-          hit = 0.0;  // touching and moving in, or at rest across it and pressed in
-        } else {
-          double roots[2];
-          const int n_roots = detail::roots_in(c, 2, 0.0, horizon, roots);
-          for (int k = 0; k < n_roots; ++k) {
-            if (c[1] + 2.0 * c[2] * roots[k] > 0.0) {
-              hit = roots[k];
-              break;
-            }
-          }
-        }
-        if (hit < horizon) {
-          horizon = hit;
-          next = EventType::cushion;
-          which = i;
-        }
+        const double hit = cushion_contact(q, i, next.after);
+        if (hit < next.after) next = {EventType::cushion, hit, i};
       }
     }
-    for (size_t i = 0; i < scene.pockets.size(); ++i) {
-      const double hit = entry_time(q, horizon, scene.pockets[i].centre, scene.pockets[i].radius);
-      if (hit < horizon) {
-        horizon = hit;
-        next = EventType::pocket;
-        which = static_cast<int>(i);
-      }
+    for (size_t i = 0; i < scene_.pockets.size(); ++i) {
+      const double hit =
+          entry_time(q, next.after, scene_.pockets[i].centre, scene_.pockets[i].radius);
+      if (hit < next.after) next = {EventType::pocket, hit, static_cast<int>(i)};
     }
-    for (size_t i = 0; i < scene.obstacles.size(); ++i) {
-      const double hit = entry_time(q, horizon, scene.obstacles[i], 2.0 * cloth.radius);
-      if (hit < horizon) {
-        horizon = hit;
-        next = EventType::obstacle;
-        which = static_cast<int>(i);
-      }
+    for (size_t i = 0; i < scene_.obstacles.size(); ++i) {
+      const double hit = entry_time(q, next.after, scene_.obstacles[i], 2.0 * cloth_.radius);
+      if (hit < next.after) next = {EventType::obstacle, hit, static_cast<int>(i)};
     }
+    return next;
+  }
 
-    if (options.record_path && horizon > 0.0)
-      result.path.push_back({t, t + horizon, b.p, b.v, piece.accel, piece.motion});
-    advance(cloth, piece, horizon, &b);
-    t += horizon;
+  // When within `horizon` the centre meets cushion i moving in; kNever if it does not.
+  double cushion_contact(const Quadratic& q, int i, double horizon) const {
+    const Vec2 n = lines_[i].normal;
+    // n . p(t) - contact, negative on the table; contact when it rises to zero.
+    double c[3] = {dot(n, q.a0) - lines_[i].contact, dot(n, q.a1), dot(n, q.a2)};
+    if (c[0] >= 0.0) {
+      // Touching (or rounding past): on the line, so that a ball leaving the cushion
+      // is caught when friction on the cloth brings it back.
+      c[0] = 0.0;
+    }
+    if (c[0] == 0.0 && (c[1] > 0.0 || (c[1] == 0.0 && c[2] > 0.0)))
+      return 0.0;  // touching and moving in, or at rest across it and pressed in
+    double roots[2];
+    const int n_roots = detail::roots_in(c, 2, 0.0, horizon, roots);
+    for (int k = 0; k < n_roots; ++k)
+      if (c[1] + 2.0 * c[2] * roots[k] > 0.0) return roots[k];
+    return kNever;
+  }
 
-    switch (next) {
+  // Stage 2.
+  void advance(const Piece& piece, double dt) {
+    if (options_.record_path && dt > 0.0)
+      result_->path.push_back({t_, t_ + dt, b_.p, b_.v, piece.accel, piece.motion});
+    cueplan::physics::advance(cloth_, piece, dt, &b_);
+    t_ += dt;
+  }
+
+  // Stage 3.
+  void resolve(const NextEvent& next) {
+    switch (next.type) {
       case EventType::slide_to_roll:
-        b.w.x = -b.v.y / cloth.radius;
-        b.w.y = b.v.x / cloth.radius;
-        log(next, -1, -1, 0.0);
+        b_.w.x = -b_.v.y / cloth_.radius;
+        b_.w.y = b_.v.x / cloth_.radius;
+        log(next.type, -1, -1, 0.0);
         break;
       case EventType::spin_stop:
-        b.w.z = 0.0;
-        log(next, -1, -1, 0.0);
+        b_.w.z = 0.0;
+        log(next.type, -1, -1, 0.0);
         break;
       case EventType::rest:
-        b.v = {0.0, 0.0};
-        b.w.x = b.w.y = 0.0;
-        log(next, -1, -1, 0.0);
+        b_.v = {0.0, 0.0};
+        b_.w.x = b_.w.y = 0.0;
+        log(next.type, -1, -1, 0.0);
         break;
-      case EventType::cushion: {
-        // Into the cushion's frame (X = n x z, Y = n, Z = z), resolve, and back.
-        const Vec2 n = lines[which].normal;
-        const Vec2 x_axis{n.y, -n.x};
-        BallState in;
-        in.velocity = {dot(b.v, x_axis), dot(b.v, n), 0.0};
-        in.spin = {b.w.x * x_axis.x + b.w.y * x_axis.y, b.w.x * n.x + b.w.y * n.y, b.w.z};
-        if (!(in.velocity.y > 0.0)) {
-          // Friction on the cloth presses the ball into the cushion with no approach
-          // speed left (a run of ever smaller bounces that rounding ended): sliding
-          // along a cushion is not modelled.
-          result.status = ShotStatus::impact_failed;
-          result.message = "cushion " + std::to_string(which) +
-                           ": the ball is pressed against it with no approach speed (sliding "
-                           "along a cushion is not modelled)";
-          break;
-        }
-        const ImpactResult r = resolve_impact(params, in, impact);
-        if (!usable(r.status)) {
-          result.status = ShotStatus::impact_failed;
-          result.message = "cushion " + std::to_string(which) + ": " + r.message;
-          break;
-        }
-        b.v = r.outgoing.velocity.x * x_axis + r.outgoing.velocity.y * n;
-        const Vec2 wh = r.outgoing.spin.x * x_axis + r.outgoing.spin.y * n;
-        b.w = {wh.x, wh.y, r.outgoing.spin.z};
-        // On the contact line exactly, so rounding never leaves it past the cushion.
-        b.p = b.p + (lines[which].contact - dot(n, b.p)) * n;
-        ++result.cushion_hits;
-        result.max_cushion_normal_speed = std::max(result.max_cushion_normal_speed,
-                                                   in.velocity.y);
-        if (r.status == ImpactStatus::rigid_limit_exceeded) result.rigid_limit_exceeded = true;
-        if (r.method_used == ImpactMethod::table) ++result.table_impacts;
-        log(next, which, -1, in.velocity.y);
-        check_cushions = cushions_in_reach();
+      case EventType::cushion:
+        rebound(next.which);
         break;
-      }
       case EventType::pocket:
-        result.status = ShotStatus::pocketed;
-        result.pocketed = true;
-        log(next, -1, which, 0.0);
+        result_->status = ShotStatus::pocketed;
+        log(next.type, -1, next.which, 0.0);
         break;
       case EventType::obstacle:
-        result.status = ShotStatus::hit_obstacle;
-        result.hit_obstacle = true;
-        log(next, -1, which, 0.0);
+        result_->status = ShotStatus::hit_obstacle;
+        log(next.type, -1, next.which, 0.0);
         break;
       case EventType::strike:
         break;
     }
-    if (next == EventType::rest || result.status != ShotStatus::rest) break;
   }
-  result.final_position = b.p;
-  result.duration = t;
+
+  // A cushion contact: into the cushion's frame (X = n x z, Y = n, Z = z), resolved by
+  // the impact model, and back.
+  void rebound(int which) {
+    const Vec2 n = lines_[which].normal;
+    const Vec2 x_axis{n.y, -n.x};
+    BallState in;
+    in.velocity = {dot(b_.v, x_axis), dot(b_.v, n), 0.0};
+    in.spin = {b_.w.x * x_axis.x + b_.w.y * x_axis.y, b_.w.x * n.x + b_.w.y * n.y, b_.w.z};
+    if (!(in.velocity.y > 0.0)) {
+      // Friction on the cloth presses the ball into the cushion with no approach
+      // speed left (a run of ever smaller bounces that rounding ended): sliding
+      // along a cushion is not modelled.
+      result_->status = ShotStatus::impact_failed;
+      result_->message = fmt::format(
+          "cushion {}: the ball is pressed against it with no approach speed (sliding along a "
+          "cushion is not modelled)",
+          which);
+      return;
+    }
+    const ImpactResult r = resolve_impact(scene_.ball_and_cushion, in, impact_);
+    if (!usable(r.status)) {
+      result_->status = ShotStatus::impact_failed;
+      result_->message = fmt::format("cushion {}: {}", which, r.message);
+      return;
+    }
+    b_.v = r.outgoing.velocity.x * x_axis + r.outgoing.velocity.y * n;
+    const Vec2 wh = r.outgoing.spin.x * x_axis + r.outgoing.spin.y * n;
+    b_.w = {wh.x, wh.y, r.outgoing.spin.z};
+    // On the contact line exactly, so rounding never leaves it past the cushion.
+    b_.p = b_.p + (lines_[which].contact - dot(n, b_.p)) * n;
+    ++result_->cushion_hits;
+    result_->max_cushion_normal_speed = std::max(result_->max_cushion_normal_speed, in.velocity.y);
+    if (r.status == ImpactStatus::rigid_limit_exceeded) result_->rigid_limit_exceeded = true;
+    if (r.method_used == ImpactMethod::table) ++result_->table_impacts;
+    log(EventType::cushion, which, -1, in.velocity.y);
+    check_cushions_ = cushions_in_reach();
+  }
+
+  void log(EventType type, int cushion, int index, double normal_speed) {
+    ShotEvent e;
+    e.type = type;
+    e.time = t_;
+    e.position = b_.p;
+    e.velocity = b_.v;
+    e.spin = b_.w;
+    e.cushion = cushion;
+    e.index = index;
+    e.normal_speed = normal_speed;
+    result_->events.push_back(e);
+  }
+
+  // Whether any cushion is still within reach; refreshed after every cushion.
+  bool cushions_in_reach() const {
+    const double d = reach(cloth_, b_);
+    for (const CushionLine& c : lines_)
+      if (c.contact - dot(c.normal, b_.p) <= d) return true;
+    return false;
+  }
+
+  const Scene& scene_;
+  const SimulationOptions& options_;
+  const ClothModel cloth_;
+  const std::array<CushionLine, 4> lines_;
+  ImpactOptions impact_;
+  ShotResult* result_;
+  Ball b_;
+  double t_ = 0.0;
+  bool check_cushions_ = false;
+};
+
+ShotResult invalid_shot(ValidationError error) {
+  ShotResult result;
+  result.status = ShotStatus::invalid_input;
+  result.message = error.message();
+  result.error = std::move(error);
   return result;
+}
+
+}  // namespace
+
+ShotResult simulate(const CompiledScene& compiled, Vec2 cue_ball, const Shot& shot,
+                    const SimulationOptions& options) {
+  if (compiled.error()) return invalid_shot(*compiled.error());
+  const Scene& scene = compiled.scene();
+  if (Validation e = check_stroke(scene, cue_ball, shot, options)) return invalid_shot(std::move(*e));
+  ShotResult result;
+  ShotRun run(scene, options, &result);
+  run.strike(cue_ball, shot);
+  run.run();
+  return result;
+}
+
+ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
+                    const SimulationOptions& options) {
+  return simulate(CompiledScene(scene), cue_ball, shot, options);
 }
 
 }  // namespace cueplan::physics

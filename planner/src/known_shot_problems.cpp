@@ -32,7 +32,7 @@ physics::Shot random_stroke(UniformStream& uniform, double spin_max) {
 bool take_landing_as_target(const physics::ShotResult& result, problems::Problem* problem) {
   if (result.status != physics::ShotStatus::rest || result.cushion_hits > kGeneratedMaxCushions)
     return false;
-  if (!problem->scene.check_position(result.final_position, "target").empty()) return false;
+  if (problem->scene.check_position(result.final_position, {"target"})) return false;
   problem->target = result.final_position;
   problem->limits.cushions_min = problem->limits.cushions_max = result.cushion_hits;
   return true;
@@ -51,7 +51,7 @@ std::vector<KnownShotProblem> known_shot_problems(int count, uint64_t seed,
   while (static_cast<int>(out.size()) < count) {
     problems::Problem p = base;
     p.cue_ball = {uniform(kMargin, p.scene.length - kMargin), uniform(kMargin, p.scene.width - kMargin)};
-    if (!p.scene.check_position(p.cue_ball, "cue_ball").empty()) continue;
+    if (p.scene.check_position(p.cue_ball, {"cue_ball"})) continue;
     const physics::Shot shot = detail::random_stroke(uniform, p.limits.spin_max);
     const physics::ShotResult r = physics::simulate(p.scene, p.cue_ball, shot, sim);
     if (!detail::take_landing_as_target(r, &p)) continue;

@@ -31,7 +31,7 @@ std::vector<KnownShotProblem> obstacle_field_problems(int count, int obstacles, 
   auto free_spot = [&](const physics::Scene& scene, physics::Vec2* spot) {
     for (int attempt = 0; attempt < 1000; ++attempt) {
       const physics::Vec2 p{uniform(kMargin, scene.length - kMargin), uniform(kMargin, scene.width - kMargin)};
-      if (!scene.check_position(p, "ball").empty()) continue;
+      if (scene.check_position(p, {"ball"})) continue;
       bool clear = true;
       for (const physics::Vec2& o : scene.obstacles) clear = clear && std::hypot(p.x - o.x, p.y - o.y) >= clearance;
       if (!clear) continue;

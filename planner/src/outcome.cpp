@@ -1,9 +1,10 @@
 // Scoring, families and constraint reports of single strokes, and evaluate().
 #include "outcome.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "cueplan/planner/planner.hpp"
@@ -22,12 +23,6 @@ const char* cushion_name(int cushion) {
     case 3: return "x = 0";
   }
   return "?";
-}
-
-std::string format(const char* pattern, double a, double b = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, pattern, a, b);
-  return buf;
 }
 
 }  // namespace
@@ -56,8 +51,9 @@ double shot_score(const problems::Problem& problem, const physics::ShotResult& r
     score += kCushionPenalty * (l.cushions_min - result.cushion_hits);
   else if (result.cushion_hits > l.cushions_max)
     score += kCushionPenalty * (result.cushion_hits - l.cushions_max);
-  if (enforce_rigid_limit && result.max_cushion_normal_speed > kRigidLimit)
-    score += kRigidPenalty + kRigidPenaltyPerSpeed * (result.max_cushion_normal_speed - kRigidLimit);
+  const double rigid_limit = problem.scene.ball_and_cushion.rigid_speed_limit;
+  if (enforce_rigid_limit && result.max_cushion_normal_speed > rigid_limit)
+    score += kRigidPenalty + kRigidPenaltyPerSpeed * (result.max_cushion_normal_speed - rigid_limit);
   return score;
 }
 
@@ -82,20 +78,24 @@ FamilyKey family_key(const physics::Shot& shot, const physics::ShotResult& resul
   return key;
 }
 
-std::string family_words(const FamilyKey& key) {
+}  // namespace detail
+
+std::string describe(const Family& key) {
   std::string words;
   if (key.route.empty()) {
     words = "no cushion";
   } else {
     words = std::to_string(key.route.size()) + (key.route.size() == 1 ? " cushion (" : " cushions (");
     for (size_t i = 0; i < key.route.size(); ++i)
-      words += std::string(i ? ", " : "") + cushion_name(key.route[i]);
+      words += std::string(i ? ", " : "") + detail::cushion_name(key.route[i]);
     words += ")";
   }
   words += key.topspin > 0 ? ", follow" : key.topspin < 0 ? ", draw" : ", stun";
   words += key.sidespin > 0 ? ", right spin" : key.sidespin < 0 ? ", left spin" : ", no side";
   return words;
 }
+
+namespace detail {
 
 std::string violations(const problems::Problem& problem, const physics::Shot& shot,
                        const physics::ShotResult& result, bool enforce_rigid_limit) {
@@ -111,11 +111,12 @@ std::string violations(const problems::Problem& problem, const physics::Shot& sh
   }
   const problems::Limits& l = problem.limits;
   if (result.cushion_hits < l.cushions_min || result.cushion_hits > l.cushions_max)
-    add(format("%g cushions, outside the allowed %g", result.cushion_hits, l.cushions_min) +
-        (l.cushions_max != l.cushions_min ? format("-%g", l.cushions_max) : ""));
-  if (enforce_rigid_limit && result.max_cushion_normal_speed > kRigidLimit)
-    add(format("cushion normal speed %.3g m/s above the rigid-cushion limit %.3g m/s",
-               result.max_cushion_normal_speed, kRigidLimit));
+    add(fmt::format("{} cushions, outside the allowed {}", result.cushion_hits, l.cushions_min) +
+        (l.cushions_max != l.cushions_min ? fmt::format("-{}", l.cushions_max) : ""));
+  const double rigid_limit = problem.scene.ball_and_cushion.rigid_speed_limit;
+  if (enforce_rigid_limit && result.max_cushion_normal_speed > rigid_limit)
+    add(fmt::format("cushion normal speed {:.3g} m/s above the rigid-cushion limit {:.3g} m/s",
+                    result.max_cushion_normal_speed, rigid_limit));
   return why;
 }
 
@@ -135,9 +136,11 @@ PlannedShot describe_outcome(const problems::Problem& problem, const physics::Sh
   const problems::Limits& l = problem.limits;
   p.within_limits = problems::check_shot(l, shot).empty() && r.cushion_hits >= l.cushions_min &&
                     r.cushion_hits <= l.cushions_max;
-  p.rigid_limit_exceeded = r.rigid_limit_exceeded || r.max_cushion_normal_speed > kRigidLimit;
+  p.rigid_limit_exceeded = r.rigid_limit_exceeded ||
+                          r.max_cushion_normal_speed > problem.scene.ball_and_cushion.rigid_speed_limit;
   p.max_cushion_normal_speed = r.max_cushion_normal_speed;
-  p.family = family_words(family_key(shot, r));
+  p.family_key = family_key(shot, r);
+  p.family = describe(p.family_key);
   p.impact_method = r.impact_method;
   p.violations = violations(problem, shot, r, enforce_rigid_limit);
   p.solves = p.violations.empty() && problems::reaches_target(problem, r);

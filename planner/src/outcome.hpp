@@ -15,14 +15,12 @@ namespace cueplan::planner::detail {
 // feasible strokes while keeping the objective continuous within a route.
 inline constexpr double kEndedEarlyPenalty = 1.0;   // pocketed or touched an obstacle
 inline constexpr double kCushionPenalty = 0.5;      // per cushion outside [min, max]
-inline constexpr double kRigidPenalty = 0.5;        // cushion normal speed above 2.5 m/s
+inline constexpr double kRigidPenalty = 0.5;        // cushion normal speed above the rigid limit
 inline constexpr double kRigidPenaltyPerSpeed = 1.0;  // m per m/s of excess
 inline constexpr double kFailedPenalty = 100.0;     // no result (invalid, event limit, impact)
-inline constexpr double kRigidLimit = 2.5;          // m/s, PHYSICS.md "Validity"
 
-// A tip offset under half a quarter tip (1/32 R, k = 2.5/32) reads as centre, as in
-// describe_stroke().
-inline constexpr double kCentreK = 2.5 / 32.0;
+// A tip offset under half a quarter tip (1/32 R) reads as centre, as in describe_stroke().
+inline constexpr double kCentreK = physics::kSpinPerTipOffset / 32.0;
 
 // The objective of the nominal search: the miss distance (m) when the stroke stops on
 // the table after an allowed number of cushions, plus penalties otherwise.
@@ -41,17 +39,8 @@ std::vector<int> route_of(const physics::ShotResult& result);
 // Which family a stroke belongs to: its route and the signs of its spins, with a
 // band around zero for stun and no side. Two strokes with equal keys are "the same
 // way" of playing the shot.
-struct FamilyKey {
-  std::vector<int> route;
-  int topspin = 0;   // +1 follow, 0 stun, -1 draw
-  int sidespin = 0;  // +1 right, 0 none, -1 left
-  bool ended_early = false;  // pocketed or obstacle: not a way to the target
-
-  auto operator<=>(const FamilyKey&) const = default;
-};
+using FamilyKey = Family;
 FamilyKey family_key(const physics::Shot& shot, const physics::ShotResult& result);
-// In words, e.g. "2 cushions (y = W, x = L), follow, right spin".
-std::string family_words(const FamilyKey& key);
 
 // The constraints a described stroke breaks, in words; empty when it breaks none.
 std::string violations(const problems::Problem& problem, const physics::Shot& shot,

@@ -10,8 +10,6 @@ namespace cueplan::planner {
 namespace detail {
 namespace {
 
-constexpr double kMiscueK = 1.25;  // k = 2.5 d / R at d = R/2 (PHYSICS.md, "Cue strike")
-
 // Uniform in (0, 1) from the top 53 bits.
 double open_uniform(std::mt19937_64& rng) {
   return (static_cast<double>(rng() >> 11) + 0.5) * 0x1.0p-53;
@@ -47,7 +45,7 @@ bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseM
                   double radius, double miscue_k, physics::Shot* out) {
   const double s = noise.scale;
   // Tip offsets d become spin by k = 2.5 d / R (PHYSICS.md, "Cue strike").
-  const double dk = 2.5 * noise.tip_offset * s / radius;
+  const double dk = physics::kSpinPerTipOffset * noise.tip_offset * s / radius;
   out->speed = shot.speed + noise.speed * s * draw.speed;
   out->aim_deg = shot.aim_deg + noise.aim_deg * s * draw.aim;
   out->sidespin_k = shot.sidespin_k + dk * draw.right;
@@ -57,13 +55,14 @@ bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseM
 }
 
 double miscue_limit(const problems::Problem& problem) {
-  return std::max(kMiscueK, problem.limits.spin_max);
+  return std::max(physics::kMiscueSpin, problem.limits.spin_max);
 }
 
-double soft_success(const problems::Problem& problem, const physics::Shot& shot,
+double soft_success(const Task& task, const physics::Shot& shot,
                     const std::vector<NoiseDraw>& draws, const NoiseModel& noise,
                     const physics::SimulationOptions& simulation, int* simulations) {
   if (draws.empty()) return 0.0;
+  const problems::Problem& problem = task.problem;
   const double radius = problem.scene.radius();
   const double miscue = miscue_limit(problem);
   const problems::Limits& l = problem.limits;
@@ -71,7 +70,7 @@ double soft_success(const problems::Problem& problem, const physics::Shot& shot,
   for (const NoiseDraw& d : draws) {
     physics::Shot s;
     if (!noisy_stroke(shot, d, noise, radius, miscue, &s)) continue;
-    const physics::ShotResult r = physics::simulate(problem.scene, problem.cue_ball, s, simulation);
+    const physics::ShotResult r = task.simulate(s, simulation);
     ++*simulations;
     if (r.status != physics::ShotStatus::rest || r.cushion_hits < l.cushions_min ||
         r.cushion_hits > l.cushions_max)
@@ -89,20 +88,28 @@ double soft_success(const problems::Problem& problem, const physics::Shot& shot,
 double success_probability(const problems::Problem& problem, const physics::Shot& shot,
                            const NoiseModel& noise, int samples, uint64_t seed,
                            const physics::SimulationOptions& simulation) {
-  if (samples <= 0 || !noise.validate().empty()) return 0.0;
+  return detail::success_probability(detail::Task(problem), shot, noise, samples, seed, simulation);
+}
+
+namespace detail {
+
+double success_probability(const Task& task, const physics::Shot& shot, const NoiseModel& noise,
+                           int samples, uint64_t seed, const physics::SimulationOptions& simulation) {
+  if (samples <= 0 || noise.validate()) return 0.0;
+  const problems::Problem& problem = task.problem;
   physics::SimulationOptions quiet = simulation;
   quiet.record_path = false;
   const double radius = problem.scene.radius();
-  const double miscue = detail::miscue_limit(problem);
+  const double miscue = miscue_limit(problem);
   int landed = 0;
-  for (const detail::NoiseDraw& d : detail::noise_draws(samples, seed)) {
+  for (const NoiseDraw& d : noise_draws(samples, seed)) {
     physics::Shot s;
-    if (!detail::noisy_stroke(shot, d, noise, radius, miscue, &s)) continue;
-    if (problems::reaches_target(problem,
-                                 physics::simulate(problem.scene, problem.cue_ball, s, quiet)))
-      ++landed;
+    if (!noisy_stroke(shot, d, noise, radius, miscue, &s)) continue;
+    if (problems::reaches_target(problem, task.simulate(s, quiet))) ++landed;
   }
   return static_cast<double>(landed) / samples;
 }
+
+}  // namespace detail
 
 }  // namespace cueplan::planner

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cueplan/planner/planner.hpp"
+#include "task.hpp"
 
 namespace cueplan::planner::detail {
 
@@ -35,8 +36,12 @@ double miscue_limit(const problems::Problem& problem);
 // is smooth in the stroke and keeps telling near misses from wide ones when only a
 // few of the draws land, and it rises as the landings gather round the target.
 // *simulations counts the strokes simulated.
-double soft_success(const problems::Problem& problem, const physics::Shot& shot,
+double soft_success(const Task& task, const physics::Shot& shot,
                     const std::vector<NoiseDraw>& draws, const NoiseModel& noise,
                     const physics::SimulationOptions& simulation, int* simulations);
+
+// planner::success_probability on a checked task.
+double success_probability(const Task& task, const physics::Shot& shot, const NoiseModel& noise,
+                           int samples, uint64_t seed, const physics::SimulationOptions& simulation);
 
 }  // namespace cueplan::planner::detail

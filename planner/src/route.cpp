@@ -38,16 +38,18 @@
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/util/Console.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cueplan/planner/route.hpp"
+#include "task.hpp"
 
 namespace cueplan::planner {
 namespace {
@@ -106,6 +108,7 @@ const double* values(const oc::Control* c) {
 // Everything the OMPL callbacks share for one plan_route call, with its counters.
 struct Context {
   const problems::Problem* problem = nullptr;
+  const detail::Task* task = nullptr;  // the problem, checked, with its scene compiled
   const RouteOptions* options = nullptr;
   double goal_radius = 0.0;  // m, planning goal
   double risk_weight = 0.0;  // w in n + w * sum(risk)
@@ -392,7 +395,7 @@ class StrokePropagator : public oc::StatePropagator {
     const physics::Vec2 from{in[kX], in[kY]};
     const double strokes = in[kStrokes] + 1.0;
     const physics::Shot shot = resolve(ctx, from, values(control));
-    const physics::ShotResult r = physics::simulate(p.scene, from, shot, o.simulation);
+    const physics::ShotResult r = ctx.task->simulate_from(from, shot, o.simulation);
     ++ctx.evaluations;
     out[kStrokes] = strokes;
     out[kCushions] = r.cushion_hits;
@@ -515,12 +518,6 @@ class SeededSst : public Seeded<oc::SST> {
   }
 };
 
-std::string format(const char* pattern, double a, double b = 0.0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, pattern, a, b);
-  return buf;
-}
-
 // ---------------------------------------------------------------------------
 // Verification of a found path, stroke by stroke.
 
@@ -564,7 +561,7 @@ Verified verify(Context& ctx, const std::vector<physics::Shot>& shots) {
       return v;
     }
     if (last && !(e.miss_distance <= p.tolerance && e.cushion_hits >= p.limits.cushions_min)) {
-      v.why = n + format(" stops %.1f mm from the target when simulated exactly", 1e3 * e.miss_distance);
+      v.why = n + fmt::format(" stops {:.1f} mm from the target when simulated exactly", 1e3 * e.miss_distance);
       return v;
     }
     s.zone_centre = last ? p.target : e.final_position;
@@ -634,18 +631,17 @@ bool parse_route_sampler(const std::string& name, RouteSampler* sampler) {
   return false;
 }
 
-std::string RouteOptions::validate() const {
+physics::Validation RouteOptions::validate() const {
+  using physics::invalid;
   const auto bad = [](const char* field, const char* rule, double value) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "%s: %s, got %g", field, rule, value);
-    return std::string(buf);
+    return invalid({field}, rule, value);
   };
   if (planner != RoutePlanner::sst && planner != RoutePlanner::rrt &&
       planner != RoutePlanner::kpiece1)
     return bad("planner", "must be sst, rrt or kpiece1", static_cast<int>(planner));
   if (sampler != RouteSampler::directed && sampler != RouteSampler::random)
     return bad("sampler", "must be directed or random", static_cast<int>(sampler));
-  if (max_strokes < 1 || max_strokes > 100)
+  if (max_strokes < 1 || max_strokes > problems::kMostStrokes)
     return bad("max_strokes", "must lie in [1, 100]", max_strokes);
   if (!std::isfinite(max_time_s) || !(max_time_s > 0.0))
     return bad("max_time_s", "must be positive and finite (s)", max_time_s);
@@ -654,17 +650,17 @@ std::string RouteOptions::validate() const {
   if (!(goal_bias >= 0.0 && goal_bias < 1.0)) return bad("goal_bias", "must lie in [0, 1)", goal_bias);
   if (!std::isfinite(intermediate_zone_m) || !(intermediate_zone_m > 0.0))
     return bad("intermediate_zone_m", "must be positive and finite (m)", intermediate_zone_m);
-  if (std::string why = noise.validate(); !why.empty()) return why;
+  if (physics::Validation e = noise.validate()) return e->under({"noise"});
   if (risk_samples < 0) return bad("risk_samples", "must not be negative", risk_samples);
   if (robustness_samples < 0)
     return bad("robustness_samples", "must not be negative", robustness_samples);
   if (simulation.max_events < 1)
-    return bad("simulation.max_events", "must be at least 1", simulation.max_events);
+    return invalid({"simulation", "max_events"}, "must be at least 1", simulation.max_events);
   if (!std::isfinite(simulation.impact_accuracy) || !(simulation.impact_accuracy > 0.0))
-    return bad("simulation.impact_accuracy", "must be positive and finite",
-               simulation.impact_accuracy);
+    return invalid({"simulation", "impact_accuracy"}, "must be positive and finite",
+                   simulation.impact_accuracy);
   if (simulation.impact_method == physics::ImpactMethod::table && simulation.table == nullptr)
-    return "simulation.table: the table impact method needs a table";
+    return invalid({"simulation", "table"}, "must be given for the table impact method");
   return {};
 }
 
@@ -680,20 +676,18 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
 
   RouteResult result;
   // 1. Check.
-  if (std::string why = options.validate(); !why.empty()) {
-    result.message = why;
+  if (physics::Validation e = options.validate()) {
+    result.message = e->message();
+    result.error = std::move(e);
     return finish(result, ctx, start);
   }
-  if (std::string why = problem.scene.validate(); !why.empty()) {
-    result.message = why;
+  if (physics::Validation e = problems::validate(problem)) {
+    result.message = "problem: " + problems::file_message(*e);
+    result.error = std::move(e);
     return finish(result, ctx, start);
   }
-  for (const auto& [where, what] : {std::pair{problem.cue_ball, "cue_ball"},
-                                    std::pair{problem.target, "target"}})
-    if (std::string why = problem.scene.check_position(where, what); !why.empty()) {
-      result.message = why;
-      return finish(result, ctx, start);
-    }
+  const detail::Task task(problem);
+  ctx.task = &task;
   if (std::string why = unreachable_reason(problem); !why.empty()) {
     result.status = RouteStatus::unreachable;
     result.message = why;
@@ -740,7 +734,7 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
   setup.setStateValidityChecker([&problem, &options](const ob::State* s) {
     const double* v = values(s);
     if (!(v[kStrokes] <= options.max_strokes) || v[kX] == kOffTable) return false;
-    return problem.scene.check_position({v[kX], v[kY]}, "ball").empty();
+    return !problem.scene.check_position({v[kX], v[kY]}, {"ball"});
   });
   ob::ScopedState<> first(space);
   first[kX] = problem.cue_ball.x;
@@ -796,7 +790,7 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
   }
   const double search_s = std::chrono::duration<double>(Clock::now() - ctx.search_start).count();
   const std::string budget =
-      format("%.3g s", options.max_time_s) +
+      fmt::format("{:.3g} s", options.max_time_s) +
       (options.max_propagations > 0 ? " or " + std::to_string(options.max_propagations) + " propagations"
                                     : std::string());
 
@@ -804,7 +798,7 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
     result.status = RouteStatus::budget_exhausted;
     result.message = "No route of at most " + std::to_string(options.max_strokes) +
                      (options.max_strokes == 1 ? " stroke" : " strokes") + " found within " +
-                     budget + format(" (searched %.3g s, %.0f states in the tree).", search_s,
+                     budget + fmt::format(" (searched {:.3g} s, {} states in the tree).", search_s,
                                      result.tree_states);
     return finish(result, ctx, start);
   }
@@ -834,8 +828,8 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
   result.message = "Route of " + std::to_string(n) + (n == 1 ? " stroke" : " strokes") +
                    " found by " + to_string(options.planner) + " with the " +
                    to_string(options.sampler) + " sampler" +
-                   format("; its last stroke stops %.2g mm from the target when re-simulated "
-                          "exactly.",
+                   fmt::format("; its last stroke stops {:.2g} mm from the target when re-simulated "
+                               "exactly.",
                           1e3 * result.strokes.back().planned.miss_distance);
   return finish(result, ctx, start);
 }

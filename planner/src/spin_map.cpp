@@ -3,26 +3,18 @@
 #include "cueplan/planner/spin_map.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <thread>
 #include <vector>
+
+#include "cueplan/physics/parallel.hpp"
+#include "task.hpp"
 
 namespace cueplan::planner {
 namespace {
 
 namespace phys = cueplan::physics;
 
-std::string describe(const char* field, const char* rule, double value) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field, rule, value);
-  return buf;
-}
-
-// k = (5/2) d / R for a centred-impulse cue (PHYSICS.md, "Cue strike").
-constexpr double kSpinPerTipOffset = 2.5;
+using phys::kSpinPerTipOffset;
 
 // The grid's spins inside the disc of radius spin_max, row by row from the top
 // (most topspin) down, each row from the left (most left spin) to the right. The
@@ -51,10 +43,11 @@ std::vector<SpinMapPoint> grid_points(int grid, double spin_max) {
 }
 
 // Simulates one grid spin and records where it stops against the target.
-void land(const problems::Problem& problem, double speed, double aim_deg,
+void land(const detail::Task& task, double speed, double aim_deg,
           const phys::SimulationOptions& simulation, SpinMapPoint* p) {
+  const problems::Problem& problem = task.problem;
   const phys::Shot shot{speed, aim_deg, p->topspin_k, p->sidespin_k};
-  const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, shot, simulation);
+  const phys::ShotResult r = task.simulate(shot, simulation);
   p->outcome = r.status;
   p->final_position = r.final_position;
   p->miss_distance = problems::miss_distance(problem, r);
@@ -62,22 +55,15 @@ void land(const problems::Problem& problem, double speed, double aim_deg,
   p->lands = problems::reaches_target(problem, r);
 }
 
-unsigned worker_count(int requested, size_t items) {
-  const unsigned wanted = requested > 0 ? static_cast<unsigned>(requested)
-                                        : std::max(1u, std::thread::hardware_concurrency());
-  return static_cast<unsigned>(std::max<size_t>(1, std::min<size_t>(wanted, items)));
-}
-
 }  // namespace
 
-std::string SpinMapOptions::validate() const {
-  if (grid < 3 || grid > 1001)
-    return "grid must be 3 to 1001 points across the disc, got " + std::to_string(grid);
+phys::Validation SpinMapOptions::validate() const {
+  using phys::invalid;
+  if (grid < 3 || grid > 1001) return invalid({"grid"}, "must be 3 to 1001 points across the disc", grid);
   if (!std::isfinite(spin_max) || spin_max < 0.0)
-    return describe("spin_max", "must be finite and not negative (0: the problem's limit)",
-                    spin_max);
-  if (threads < 0)
-    return "threads must be 0 (one per core) or more, got " + std::to_string(threads);
+    return invalid({"spin_max"}, "must be finite and not negative (0: the problem's limit)",
+                   spin_max);
+  if (threads < 0) return invalid({"threads"}, "must be 0 (one per core) or more", threads);
   return {};
 }
 
@@ -89,21 +75,21 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
   map.grid = options.grid;
   map.spin_max = options.spin_max > 0.0 ? options.spin_max : problem.limits.spin_max;
 
-  if (std::string why = options.validate(); !why.empty()) {
-    map.message = why;
+  const auto fail = [&map](phys::ValidationError error, std::string message) {
+    map.message = std::move(message);
+    map.error = std::move(error);
     return map;
-  }
+  };
+  if (phys::Validation e = options.validate()) return fail(*e, e->message());
+  if (phys::Validation e = problems::validate(problem))
+    return fail(*e, "problem: " + problems::file_message(*e));
   if (!std::isfinite(speed) || !(speed > 0.0)) {
-    map.message = describe("speed", "must be finite and above 0 (m/s)", speed);
-    return map;
+    const phys::ValidationError e = phys::invalid({"speed"}, "must be finite and above 0 (m/s)", speed);
+    return fail(e, e.message());
   }
   if (!std::isfinite(aim_deg)) {
-    map.message = describe("aim_deg", "must be finite (deg)", aim_deg);
-    return map;
-  }
-  if (!std::isfinite(map.spin_max) || !(map.spin_max > 0.0)) {
-    map.message = describe("limits.spin", "must be finite and above 0", map.spin_max);
-    return map;
+    const phys::ValidationError e = phys::invalid({"aim_deg"}, "must be finite (deg)", aim_deg);
+    return fail(e, e.message());
   }
 
   // Only rest positions are kept: paths would cost memory and time for nothing.
@@ -112,39 +98,23 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
 
   map.points = grid_points(options.grid, map.spin_max);
   const size_t total = map.points.size();
-  const unsigned threads = worker_count(options.threads, total);
+  const unsigned threads = phys::thread_count(options.threads, total);
+  const detail::Task task(problem);
 
   // Each point is written by exactly one worker, into its own slot: the map is the
   // same for any number of threads. The calling thread works too and alone reports
   // progress, at most about a hundred times.
-  std::atomic<size_t> next{0};
-  std::atomic<size_t> done{0};
   size_t reported = 0;
-  const auto report = [&] {
-    const size_t finished = done.load();
-    if (!options.progress || (finished - reported) * 100 < total) return;
+  // A report at every whole per cent finished, and at the end.
+  const auto report = [&](size_t finished) {
+    if (!options.progress || ((finished - reported) * 100 < total && finished < total)) return;
     reported = finished;
     options.progress(static_cast<double>(finished) / static_cast<double>(total));
   };
-  const auto drain = [&](bool reporting) {
-    for (size_t i = next++; i < total; i = next++) {
-      land(problem, speed, aim_deg, simulation, &map.points[i]);
-      ++done;
-      if (reporting) report();
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(drain, false);
-    drain(true);
-    // The last points may still be running on the workers.
-    while (options.progress && done.load() < total) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      report();
-    }
-  }  // joins the workers
-  if (options.progress) options.progress(1.0);
+  physics::parallel_for(
+      total, threads,
+      [&](size_t i, unsigned) { land(task, speed, aim_deg, simulation, &map.points[i]); },
+      report);
 
   map.landing = static_cast<int>(std::count_if(map.points.begin(), map.points.end(),
                                                [](const SpinMapPoint& p) { return p.lands; }));

@@ -1,19 +1,14 @@
 // Names of the planner's methods and statuses, the noise model's checks, and the
 // stroke in a player's terms.
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "cueplan/planner/planner.hpp"
 
 namespace cueplan::planner {
 namespace {
-
-std::string describe(const char* field, const char* rule, double value) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %s, got %.10g", field, rule, value);
-  return buf;
-}
 
 // A "tip" of offset is a quarter of the ball's radius, so the miscue limit (half the
 // radius, PHYSICS.md) is two tips. Amounts are rounded to the nearest quarter tip.
@@ -63,7 +58,7 @@ const char* to_string(LocalMethod method) {
 const char* to_string(PlanStatus status) {
   switch (status) {
     case PlanStatus::solved: return "solved";
-    case PlanStatus::unreachable: return "unreachable";
+    case PlanStatus::no_solution_found: return "no_solution_found";
     case PlanStatus::budget_exhausted: return "budget_exhausted";
     case PlanStatus::invalid_input: return "invalid_input";
   }
@@ -92,21 +87,21 @@ bool parse_local_method(const std::string& name, LocalMethod* method) {
   return false;
 }
 
-std::string NoiseModel::validate() const {
+physics::Validation NoiseModel::validate() const {
+  using physics::invalid;
   if (!std::isfinite(aim_deg) || aim_deg < 0.0)
-    return describe("noise.aim_deg", "must be finite and not negative (deg)", aim_deg);
+    return invalid({"aim_deg"}, "must be finite and not negative (deg)", aim_deg);
   if (!std::isfinite(speed) || speed < 0.0)
-    return describe("noise.speed", "must be finite and not negative (m/s)", speed);
+    return invalid({"speed"}, "must be finite and not negative (m/s)", speed);
   if (!std::isfinite(tip_offset) || tip_offset < 0.0)
-    return describe("noise.tip_offset", "must be finite and not negative (m)", tip_offset);
+    return invalid({"tip_offset"}, "must be finite and not negative (m)", tip_offset);
   if (!std::isfinite(scale) || scale < 0.0)
-    return describe("noise.scale", "must be finite and not negative", scale);
+    return invalid({"scale"}, "must be finite and not negative", scale);
   return {};
 }
 
 TipOffset tip_offset(const physics::Shot& shot) {
-  // k = (5/2) d / R for a centred-impulse cue (PHYSICS.md, "Cue strike").
-  return {shot.sidespin_k / 2.5, shot.topspin_k / 2.5};
+  return {shot.sidespin_k / physics::kSpinPerTipOffset, shot.topspin_k / physics::kSpinPerTipOffset};
 }
 
 std::string describe_stroke(const physics::Shot& shot) {
@@ -121,9 +116,7 @@ std::string describe_stroke(const physics::Shot& shot) {
     height = "centre ball";
   else
     height = tips(t.up) + (t.up > 0 ? " above centre" : " below centre");
-  char speed[64];
-  std::snprintf(speed, sizeof speed, "%.2f m/s", shot.speed);
-  return side + ", " + height + ", at " + speed;
+  return side + ", " + height + ", at " + fmt::format("{:.2f} m/s", shot.speed);
 }
 
 }  // namespace cueplan::planner

@@ -1,21 +1,115 @@
 // What a problem asks for: a human summary, and the tests a shot and its outcome pass.
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
+#include <string_view>
 
 #include "cueplan/problems/problem.hpp"
 
 namespace cueplan::problems {
 namespace {
 
-// printf into a std::string; every use here is short.
-template <typename... Args>
-std::string format(const char* pattern, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, pattern, args...);
-  return buf;
+using physics::FieldPath;
+using physics::FieldStep;
+using physics::invalid;
+using physics::Validation;
+
+const std::string* name_at(const FieldPath& path, size_t i) {
+  return i < path.size() ? std::get_if<std::string>(&path.steps()[i]) : nullptr;
 }
+const int* index_at(const FieldPath& path, size_t i) {
+  return i < path.size() ? std::get_if<int>(&path.steps()[i]) : nullptr;
+}
+
+// Problem::scene's fields as the file names them.
+std::string scene_field(const FieldPath& path) {
+  const std::string* head = name_at(path, 0);
+  if (head == nullptr) return path.text();
+  if (*head == "length" || *head == "width") return "table." + *head;
+  if (*head == "ball_and_cushion") {
+    const std::string* member = name_at(path, 1);
+    if (member == nullptr) return "ball";
+    if (*member == "mass" || *member == "radius") return "ball." + *member;
+    if (*member == "mu_table") return "physics.mu_slide";  // one ball-cloth friction in the file
+    return "physics." + *member;
+  }
+  if (*head == "cloth") return "physics." + path.drop_front(1).text();
+  if (*head == "pockets") {
+    const int* index = index_at(path, 1);
+    if (path.size() >= 3) return "table.pocket_radius";  // the one radius every pocket has
+    if (index != nullptr && *index >= 0 && *index < 6)
+      return fmt::format("the {} pocket", kPocketNames[*index]);
+    return path.text();
+  }
+  return path.text();  // obstacles[2], ...
+}
+
+}  // namespace
+
+std::string file_field(const FieldPath& path) {
+  const std::string* head = name_at(path, 0);
+  if (head == nullptr) return path.text();
+  if (*head == "scene") return scene_field(path.drop_front(1));
+  if (*head == "limits") {
+    const std::string* member = name_at(path, 1);
+    if (member == nullptr) return "limits";
+    if (*member == "speed_min") return "limits.speed[0]";
+    if (*member == "speed_max") return "limits.speed[1]";
+    if (*member == "spin_max") return "limits.spin";
+    if (*member == "aim") return "limits.aim_deg";
+    if (*member == "cushions_min") return "limits.cushions[0]";
+    if (*member == "cushions_max") return "limits.cushions[1]";
+  }
+  return path.text();  // cue_ball, target, tolerance, max_strokes, time_budget_s
+}
+
+std::string file_message(const physics::ValidationError& error) {
+  return error.message(file_field(error.field), error.other ? file_field(*error.other) : "");
+}
+
+Validation validate(const Problem& p) {
+  if (Validation e = p.scene.validate()) return e->under({"scene"});
+  // A pocket or obstacle a ball position meets is a field of the scene.
+  for (const auto& [position, name] : {std::pair{p.cue_ball, "cue_ball"}, std::pair{p.target, "target"}}) {
+    if (Validation e = p.scene.check_position(position, {name})) {
+      if (e->other) e->other = e->other->under({"scene"});
+      return e;
+    }
+  }
+  if (!std::isfinite(p.tolerance) || !(p.tolerance > 0.0))
+    return invalid({"tolerance"}, "must be positive and finite (m)", p.tolerance);
+  const Limits& l = p.limits;
+  if (!std::isfinite(l.speed_min) || !(l.speed_min > 0.0))
+    return invalid({"limits", "speed_min"}, "must be positive and finite (m/s)", l.speed_min);
+  if (!std::isfinite(l.speed_max) || !(l.speed_max > l.speed_min))
+    return invalid({"limits", "speed_max"}, "must be finite and exceed the least speed (m/s)",
+                   l.speed_max);
+  if (!std::isfinite(l.spin_max) || !(l.spin_max > 0.0))
+    return invalid({"limits", "spin_max"}, "must be positive and finite", l.spin_max);
+  if (l.cushions_min < 0)
+    return invalid({"limits", "cushions_min"}, "must not be negative", l.cushions_min);
+  if (l.cushions_max < l.cushions_min)
+    return invalid({"limits", "cushions_max"}, "must not be below the least count",
+                   l.cushions_max);
+  const AimLimit& a = l.aim;
+  if (!std::isfinite(a.lo_deg) || !std::isfinite(a.hi_deg))
+    return invalid({"limits", "aim"}, "must be finite (deg)",
+                   std::isfinite(a.lo_deg) ? a.hi_deg : a.lo_deg);
+  if (a.mode == AimMode::range && !(a.lo_deg < a.hi_deg && a.hi_deg <= a.lo_deg + 360.0))
+    return invalid({"limits", "aim"},
+                   fmt::format("range must satisfy lo < hi <= lo + 360 deg, got [{:.10g}, {:.10g}]",
+                               a.lo_deg, a.hi_deg));
+  if (p.max_strokes && (*p.max_strokes < 1 || *p.max_strokes > kMostStrokes))
+    return invalid({"max_strokes"}, fmt::format("must lie in [1, {}]", kMostStrokes),
+                   *p.max_strokes);
+  if (p.time_budget_s && !(std::isfinite(*p.time_budget_s) && *p.time_budget_s > 0.0))
+    return invalid({"time_budget_s"}, "must be positive and finite (s)", *p.time_budget_s);
+  return {};
+}
+
+namespace {
 
 // True when `phi` lies in [lo, hi] (deg) up to whole turns.
 bool aim_within(double phi, double lo, double hi) {
@@ -28,8 +122,8 @@ bool aim_within(double phi, double lo, double hi) {
 std::string describe_aim(const AimLimit& aim) {
   switch (aim.mode) {
     case AimMode::free: return "aim free";
-    case AimMode::fixed: return format("aim %.6g deg", aim.lo_deg);
-    case AimMode::range: return format("aim %.6g to %.6g deg", aim.lo_deg, aim.hi_deg);
+    case AimMode::fixed: return fmt::format("aim {:.6g} deg", aim.lo_deg);
+    case AimMode::range: return fmt::format("aim {:.6g} to {:.6g} deg", aim.lo_deg, aim.hi_deg);
   }
   return "aim ?";
 }
@@ -40,26 +134,25 @@ std::string describe(const Problem& p) {
   const physics::Scene& s = p.scene;
   const physics::CushionParams& b = s.ball_and_cushion;
   std::string text = p.name + "  (" + p.source + ")\n";
-  text += format("  table %.4g x %.4g m, ", s.length, s.width);
+  text += fmt::format("  table {:.4g} x {:.4g} m, ", s.length, s.width);
   text += s.pockets.empty() ? std::string("no pockets")
-                            : format("%zu pockets (capture radius %.4g mm)", s.pockets.size(),
+                            : fmt::format("{} pockets (capture radius {:.4g} mm)", s.pockets.size(),
                                      1e3 * s.pockets.front().radius);
-  text += format("; ball R %.5g mm, %.4g g\n", 1e3 * b.radius, 1e3 * b.mass);
-  text += format(
-      "  cloth mu_s %.4g, mu_r %.4g, mu_sp %.4g, g %.4g m/s^2; cushion mu_w %.4g, e %.4g, "
-      "h %.5g mm\n",
+  text += fmt::format("; ball R {:.5g} mm, {:.4g} g\n", 1e3 * b.radius, 1e3 * b.mass);
+  text += fmt::format("  cloth mu_s {:.4g}, mu_r {:.4g}, mu_sp {:.4g}, g {:.4g} m/s^2; cushion mu_w {:.4g}, e {:.4g}, "
+      "h {:.5g} mm\n",
       s.cloth.mu_slide, s.cloth.mu_roll, s.cloth.mu_spin, s.cloth.gravity, b.mu_cushion,
       b.restitution, 1e3 * b.cushion_height);
-  text += format("  cue ball (%.4f, %.4f) m -> target (%.4f, %.4f) m within %.4g mm", p.cue_ball.x,
+  text += fmt::format("  cue ball ({:.4f}, {:.4f}) m -> target ({:.4f}, {:.4f}) m within {:.4g} mm", p.cue_ball.x,
                  p.cue_ball.y, p.target.x, p.target.y, 1e3 * p.tolerance);
   if (!s.obstacles.empty())
-    text += format("; %zu obstacle%s", s.obstacles.size(), s.obstacles.size() == 1 ? "" : "s");
+    text += fmt::format("; {} obstacle{}", s.obstacles.size(), s.obstacles.size() == 1 ? "" : "s");
   const Limits& l = p.limits;
-  text += format("\n  limits: speed %.4g-%.4g m/s, spin <= %.4g, %s, ", l.speed_min, l.speed_max,
+  text += fmt::format("\n  limits: speed {:.4g}-{:.4g} m/s, spin <= {:.4g}, {}, ", l.speed_min, l.speed_max,
                  l.spin_max, describe_aim(l.aim).c_str());
   text += l.cushions_min == l.cushions_max
-              ? format("%d cushion%s", l.cushions_min, l.cushions_min == 1 ? "" : "s")
-              : format("%d-%d cushions", l.cushions_min, l.cushions_max);
+              ? fmt::format("{} cushion{}", l.cushions_min, l.cushions_min == 1 ? "" : "s")
+              : fmt::format("{}-{} cushions", l.cushions_min, l.cushions_max);
   return text + "\n";
 }
 
@@ -67,16 +160,16 @@ std::string check_shot(const Limits& limits, const physics::Shot& shot) {
   constexpr double kSlack = 1e-12;  // relative, so bounds written in the file are inside
   if (!std::isfinite(shot.speed) || shot.speed < limits.speed_min * (1 - kSlack) ||
       shot.speed > limits.speed_max * (1 + kSlack))
-    return format("speed %.6g m/s lies outside [%.6g, %.6g] m/s", shot.speed, limits.speed_min,
+    return fmt::format("speed {:.6g} m/s lies outside [{:.6g}, {:.6g}] m/s", shot.speed, limits.speed_min,
                   limits.speed_max);
   const double spin = std::hypot(shot.topspin_k, shot.sidespin_k);
   if (!std::isfinite(spin) || spin > limits.spin_max * (1 + kSlack))
-    return format("spin sqrt(k_T^2 + k_S^2) = %.6g exceeds %.6g", spin, limits.spin_max);
+    return fmt::format("spin sqrt(k_T^2 + k_S^2) = {:.6g} exceeds {:.6g}", spin, limits.spin_max);
   const AimLimit& aim = limits.aim;
   if (!std::isfinite(shot.aim_deg))
     return "aim must be finite";
   if (aim.mode != AimMode::free && !aim_within(shot.aim_deg, aim.lo_deg, aim.hi_deg))
-    return format("aim %.6g deg lies outside [%.6g, %.6g] deg", shot.aim_deg, aim.lo_deg,
+    return fmt::format("aim {:.6g} deg lies outside [{:.6g}, {:.6g}] deg", shot.aim_deg, aim.lo_deg,
                   aim.hi_deg);
   return {};
 }

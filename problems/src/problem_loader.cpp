@@ -1,6 +1,7 @@
 // Problem files into a Problem: each section read in the order the format lists them,
 // then the physics' own checks on the finished scene and positions (problems/README.md).
 #include <yaml-cpp/eventhandler.h>
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include <array>
@@ -27,24 +28,6 @@ using FieldLines = std::map<std::string, int>;  // path in the file -> line
 
 constexpr const char* kDocument = "(document)";
 
-// The file's fields behind the names Scene::validate and check_position use.
-constexpr std::array<std::pair<std::string_view, std::string_view>, 6> kPhysicsNames{{
-    {"mass", "ball.mass"},
-    {"radius", "ball.radius"},
-    {"cushion_height", "physics.cushion_height"},
-    {"mu_cushion", "physics.mu_cushion"},
-    {"mu_table", "physics.mu_slide"},  // one ball-cloth friction in the file
-    {"restitution", "physics.restitution"},
-}};
-
-std::string file_field(const std::string& physics_name) {
-  for (const auto& [name, field] : kPhysicsNames) {
-    if (physics_name == name) return std::string(field);
-  }
-  if (physics_name.starts_with("pockets[")) return "table.pocket_radius";
-  return physics_name;  // table.length, physics.mu_roll, obstacles[2], cue_ball, ...
-}
-
 // Line of `field`, or of the nearest enclosing field the file gives; else `fallback`.
 int line_in_file(std::string field, const FieldLines& lines, int fallback) {
   while (!field.empty()) {
@@ -56,20 +39,23 @@ int line_in_file(std::string field, const FieldLines& lines, int fallback) {
   return fallback;
 }
 
-// A message from the physics checks ("mass must be positive ...") as a FieldError on
-// the file's field, with the physics' leading name dropped where it only repeats it.
-[[noreturn]] void fail_from_physics(const std::string& message, const FieldLines& lines,
-                                    int fallback_line) {
-  const std::size_t space = message.find(' ');
-  const std::string name = message.substr(0, space);
-  std::string field = file_field(name);
-  // A table too small for the ball: blame whichever of the two the file sets.
-  if (message.starts_with("table.length and table.width") && !lines.contains("table.length"))
-    field = lines.contains("table.width") || !lines.contains("ball.radius") ? "table.width"
-                                                                              : "ball.radius";
-  std::string rest = space == std::string::npos ? message : message.substr(space + 1);
-  if (rest.starts_with("and ")) rest = message;  // "table.length and table.width must ..."
-  throw FieldError{line_in_file(field, lines, fallback_line), field, rest};
+// A broken rule of the finished problem (validate()) on the field of the file that
+// sets the value, at its line.
+[[noreturn]] void fail_on(const physics::ValidationError& error, const FieldLines& lines,
+                          int fallback_line) {
+  std::string field = file_field(error.field);
+  std::string rule = error.rule_text(error.other ? file_field(*error.other) : "");
+  // A table too small for the ball: when the file leaves that side at its default but
+  // sets the radius, the radius is what it got wrong.
+  const physics::FieldPath radius{"scene", "ball_and_cushion", "radius"};
+  if (error.other == radius && !lines.contains(field) && lines.contains("ball.radius") &&
+      error.value) {
+    rule = fmt::format("leaves no room for the ball on the table: 2 R cos(theta) must be below "
+                       "{} = {:.4g} m",
+                       field, *error.value);
+    field = "ball.radius";
+  }
+  throw FieldError{line_in_file(field, lines, fallback_line), field, rule};
 }
 
 std::string read_name(const Mapping& root, const std::string& source) {
@@ -99,13 +85,9 @@ void read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
     if (auto f = m.find("pocket_radius")) pocket_radius = detail::positive_number(*f);
   }
   scene.pockets.clear();
-  if (!standard_pockets) return;
-  // Four corners and the middles of the long cushions y = 0 and y = width.
-  const double l = scene.length, w = scene.width;
-  for (const physics::Vec2 centre : {physics::Vec2{0.0, 0.0}, physics::Vec2{l / 2, 0.0},
-                                     physics::Vec2{l, 0.0}, physics::Vec2{0.0, w},
-                                     physics::Vec2{l / 2, w}, physics::Vec2{l, w}})
-    scene.pockets.push_back({centre, pocket_radius});
+  // Four corners and the middles of the long cushions y = 0 and y = width (kPocketNames).
+  if (standard_pockets)
+    scene.pockets = physics::standard_pockets(scene.length, scene.width, pocket_radius);
 }
 
 // ball: radius (m), mass (kg). Keeps the rest of the cushion parameters at their defaults.
@@ -149,14 +131,9 @@ void read_obstacles(const Mapping& root, physics::Scene& scene, FieldLines& line
   }
 }
 
-// A ball position the scene accepts: on the cloth, clear of pockets and obstacles.
-physics::Vec2 read_position(const Mapping& root, std::string_view key, std::string_view meaning,
-                            const physics::Scene& scene) {
-  const Field field = root.require(key, meaning);
-  const physics::Vec2 position = detail::point(field);
-  if (const std::string why = scene.check_position(position, field.path); !why.empty())
-    fail_from_physics(why, {{field.path, field.line}}, field.line);
-  return position;
+// A ball position [x, y]; where it may lie is checked with the whole problem.
+physics::Vec2 read_position(const Mapping& root, std::string_view key, std::string_view meaning) {
+  return detail::point(root.require(key, meaning));
 }
 
 // limits.speed [min, max] m/s, spin, aim_deg (free | phi | [lo, hi]), cushions (n | [lo, hi]).
@@ -214,9 +191,6 @@ Limits read_limits(const Mapping& root, FieldLines& lines) {
   return limits;
 }
 
-// The most strokes a route may take (max_strokes).
-constexpr int kMostStrokes = 100;
-
 // The stages of reading one problem, in order.
 Problem read_problem(const Field& document, const std::string& source) {
   FieldLines lines;
@@ -233,12 +207,8 @@ Problem read_problem(const Field& document, const std::string& source) {
   read_ball(root, lines, scene);
   read_physics(root, lines, scene);
   read_obstacles(root, scene, lines);
-  if (const std::string why = scene.validate(); !why.empty())
-    fail_from_physics(why, lines, root.line());
-
-  problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m", scene);
-  problem.target =
-      read_position(root, "target", "where the cue ball should stop, [x, y] in m", scene);
+  problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m");
+  problem.target = read_position(root, "target", "where the cue ball should stop, [x, y] in m");
   if (const std::optional<Field> f = root.find("tolerance"))
     problem.tolerance = detail::positive_number(*f);
   problem.limits = read_limits(root, lines);
@@ -246,17 +216,26 @@ Problem read_problem(const Field& document, const std::string& source) {
     problem.max_strokes = detail::whole_number(*f, 1, kMostStrokes);
   if (const std::optional<Field> f = root.find("time_budget_s"))
     problem.time_budget_s = detail::positive_number(*f);
+  // The physics' and the problem's own rules, on the finished problem.
+  if (const physics::Validation error = validate(problem)) fail_on(*error, lines, root.line());
   return problem;
 }
 
-std::string located(const std::string& source, int line, const std::string& field,
-                    const std::string& message) {
-  std::string where = source + ":";
-  if (line > 0) where += std::to_string(line) + ":";
-  return where + " " + field + ": " + message;
+LoadResult failure(std::string error, std::string field = {}, int line = 0) {
+  LoadResult r;
+  r.error = std::move(error);
+  r.field = std::move(field);
+  r.line = line;
+  return r;
 }
 
-LoadResult failure(std::string error) { return {std::nullopt, std::move(error)}; }
+// "FILE:LINE: FIELD: message" (without LINE when it is unknown).
+LoadResult located(const std::string& source, int line, const std::string& field,
+                   const std::string& message) {
+  std::string where = source + ":";
+  if (line > 0) where += std::to_string(line) + ":";
+  return failure(where + " " + field + ": " + message, field, line);
+}
 
 // Where the first node of a YAML document starts; the rest of the events are ignored.
 class FirstNodeLine : public YAML::EventHandler {
@@ -310,25 +289,27 @@ LoadResult parse_problem(const std::string& yaml_text, const std::string& source
     const int second_line = second_document_line(yaml_text);
     const YAML::Node root = YAML::Load(yaml_text);
     if (root.IsNull())
-      return failure(located(source_name, 1, kDocument,
+      return (located(source_name, 1, kDocument,
                              "is empty; a problem needs at least cue_ball and target"));
     if (second_line > 0)
-      return failure(located(source_name, second_line, kDocument,
+      return (located(source_name, second_line, kDocument,
                              "holds a second YAML document; one problem per file"));
     const int line = detail::line_of(root) > 0 ? detail::line_of(root) : 1;
     if (!root.IsMap())
-      return failure(located(source_name, line, kDocument,
+      return (located(source_name, line, kDocument,
                              "must be a mapping of fields (name, table, ..., limits), got " +
                                  detail::describe_value(root)));
-    return {read_problem({root, "", line}, source_name), {}};
+    LoadResult loaded;
+    loaded.problem = read_problem({root, "", line}, source_name);
+    return loaded;
   } catch (const FieldError& e) {
-    return failure(located(source_name, e.line, e.field.empty() ? kDocument : e.field, e.message));
+    return located(source_name, e.line, e.field.empty() ? kDocument : e.field, e.message);
   } catch (const YAML::Exception& e) {
     // Syntax errors: yaml-cpp counts lines and columns from 0.
     const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
     std::string message = detail::printable(e.msg);
     if (!e.mark.is_null()) message += " (column " + std::to_string(e.mark.column + 1) + ")";
-    return failure(located(source_name, line, "yaml", message));
+    return located(source_name, line, "yaml", message);
   } catch (const std::exception& e) {
     return failure(source_name + ": cannot be read: " + detail::printable(e.what()));
   } catch (...) {

@@ -171,7 +171,7 @@ TEST(Solve, SvgDrawsTheBestPathAndTheAlternativesDimmed) {
   EXPECT_EQ(j.value("svg", ""), svg.string());
 }
 
-TEST(Solve, UnreachableTargetStillReportsAndExitsOne) {
+TEST(Solve, TargetOutOfReachStillReportsAndExitsOne) {
   // The cue ball can barely move: the far target is out of reach.
   const fs::path file = scratch() / "out_of_reach.yaml";
   write_text(file,
@@ -184,7 +184,7 @@ TEST(Solve, UnreachableTargetStillReportsAndExitsOne) {
   const ProcessResult run = cueplan("solve '" + file.string() + "' " + kQuick);
   EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
   EXPECT_NE(run.out.find("status"), std::string::npos);
-  EXPECT_TRUE(run.out.find("unreachable") != std::string::npos ||
+  EXPECT_TRUE(run.out.find("no_solution_found") != std::string::npos ||
               run.out.find("budget_exhausted") != std::string::npos)
       << run.out;
   EXPECT_NE(run.out.find("miss distance"), std::string::npos) << "the nearest stroke is shown";

@@ -170,7 +170,6 @@ TEST(ShotSimulator, StraightIntoACornerPocketIsPocketed) {
   const Scene s = snooker_scene();
   const ShotResult r = simulate(s, {0.5, 0.5}, {2.0, 225.0, 1.0, 0.0});
   EXPECT_EQ(r.status, ShotStatus::pocketed);
-  EXPECT_TRUE(r.pocketed);
   ASSERT_EQ(r.events.back().type, EventType::pocket);
   EXPECT_EQ(r.events.back().index, 0);
   const Vec2 p = r.events.back().position;
@@ -190,16 +189,59 @@ TEST(ShotSimulator, ObstacleOnTheLineIsHitAtTwoRadii) {
 
 TEST(ShotSimulator, BadInputNamesTheField) {
   Scene s = open_table();
-  EXPECT_NE(simulate(s, {-0.1, 0.5}, {}).message.find("cue_ball"), std::string::npos);
-  EXPECT_NE(simulate(s, {0.5, 0.5}, {NAN, 0, 0, 0}).message.find("speed"), std::string::npos);
-  EXPECT_NE(simulate(s, {0.5, 0.5}, {-1, 0, 0, 0}).message.find("speed"), std::string::npos);
+  // The field that is wrong, as data, and the same in the message.
+  const auto field_of = [](const ShotResult& r) {
+    EXPECT_EQ(r.status, ShotStatus::invalid_input);
+    EXPECT_TRUE(r.error.has_value());
+    if (r.error) {
+      EXPECT_EQ(r.message, r.error->message());
+    }
+    return r.error ? r.error->field : FieldPath{};
+  };
+  EXPECT_EQ(field_of(simulate(s, {-0.1, 0.5}, {})), FieldPath{"cue_ball"});
+  EXPECT_EQ(field_of(simulate(s, {0.5, 0.5}, {NAN, 0, 0, 0})), (FieldPath{"shot", "speed"}));
+  EXPECT_EQ(field_of(simulate(s, {0.5, 0.5}, {-1, 0, 0, 0})), (FieldPath{"shot", "speed"}));
+  EXPECT_EQ(field_of(simulate(s, {0.5, 0.5}, {1, NAN, 0, 0})), (FieldPath{"shot", "aim_deg"}));
+  SimulationOptions no_events;
+  no_events.max_events = 0;
+  EXPECT_EQ(field_of(simulate(s, {0.5, 0.5}, {}, no_events)), FieldPath{"max_events"});
   s.length = -2.0;
-  EXPECT_NE(simulate(s, {0.5, 0.5}, {}).message.find("table.length"), std::string::npos);
+  EXPECT_EQ(field_of(simulate(s, {0.5, 0.5}, {})), FieldPath{"length"});
+  s = open_table();
+  s.cloth.mu_roll = 0.0;
+  EXPECT_EQ(field_of(simulate(s, {0.5, 0.5}, {})), (FieldPath{"cloth", "mu_roll"}));
+  s = open_table();
+  s.ball_and_cushion.mass = -1.0;
+  EXPECT_EQ(field_of(simulate(s, {0.5, 0.5}, {})), (FieldPath{"ball_and_cushion", "mass"}));
   s = open_table();
   s.obstacles = {{0.51, 0.5}};
   const ShotResult r = simulate(s, {0.5, 0.5}, {});
-  EXPECT_EQ(r.status, ShotStatus::invalid_input);
+  EXPECT_EQ(field_of(r), FieldPath{"cue_ball"});
+  ASSERT_TRUE(r.error && r.error->other);
+  EXPECT_EQ(*r.error->other, (FieldPath{"obstacles", 0}));
   EXPECT_NE(r.message.find("overlaps obstacles[0]"), std::string::npos) << r.message;
+}
+
+TEST(ShotSimulator, CompiledSceneIsCheckedOnceAndGivesTheSameShots) {
+  Scene s = open_table();
+  s.obstacles = {{2.5, 1.2}};
+  const CompiledScene compiled(s);
+  ASSERT_TRUE(compiled.ok());
+  const Shot shot{2.2, 37.0, 0.4, -0.6};
+  const ShotResult a = simulate(compiled, {0.9, 0.6}, shot);
+  const ShotResult b = simulate(s, {0.9, 0.6}, shot);
+  ASSERT_EQ(a.status, ShotStatus::rest);
+  EXPECT_EQ(a.final_position.x, b.final_position.x);
+  EXPECT_EQ(a.final_position.y, b.final_position.y);
+  EXPECT_EQ(a.events.size(), b.events.size());
+  // An unusable scene compiles to its error, and every simulation of it reports it.
+  s.width = std::nan("");
+  const CompiledScene broken(s);
+  ASSERT_FALSE(broken.ok());
+  EXPECT_EQ(broken.error()->field, FieldPath{"width"});
+  const ShotResult r = simulate(broken, {0.9, 0.6}, shot);
+  EXPECT_EQ(r.status, ShotStatus::invalid_input);
+  EXPECT_EQ(r.error->field, FieldPath{"width"});
 }
 
 TEST(ShotSimulator, BallPressedIntoACushionNeverPassesIt) {

@@ -108,11 +108,11 @@ class Sampler {
 
 // Parameters that pass validate(): friction shrunk toward zero until they do.
 void make_valid(CushionParams* p) {
-  for (int i = 0; i < 200 && !p->validate().empty(); ++i) {
+  for (int i = 0; i < 200 && p->validate(); ++i) {
     p->mu_table *= 0.7;
     p->mu_cushion *= 0.7;
   }
-  if (!p->validate().empty()) p->mu_table = p->mu_cushion = 0.0;
+  if (p->validate()) p->mu_table = p->mu_cushion = 0.0;
 }
 
 CushionParams draw_params(Sampler& s, std::string* kind) {

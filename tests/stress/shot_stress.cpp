@@ -81,7 +81,7 @@ struct Case {
   Shot shot;
   SimulationOptions options;
   std::string kind;
-  std::string bad_field;  // set when the input must be refused: text the message must hold
+  std::string bad_field;  // set when the input must be refused: the field its error names
 };
 
 // Ball and cushion: snooker, or another ball size with friction and restitution
@@ -94,7 +94,7 @@ CushionParams draw_ball(Sampler& s) {
   p.mu_cushion = s.chance(0.2) ? 0.0 : s.uniform(0.0, 1.0) * tan_theta;
   p.mu_table = s.chance(0.2) ? 0.0 : s.uniform(0.0, 1.0);
   p.restitution = s.chance(0.2) ? 1.0 : s.uniform(0.3, 1.0);
-  for (int i = 0; i < 200 && !p.validate().empty(); ++i) {
+  for (int i = 0; i < 200 && p.validate(); ++i) {
     p.mu_cushion *= 0.7;
     p.mu_table *= 0.7;
   }
@@ -178,9 +178,9 @@ Case draw_case(Sampler& s) {
 
   // The cue ball: anywhere it may rest, on a cushion line or in a corner.
   c.cue_ball = random_spot(s, sc);
-  for (int i = 0; i < 20 && !sc.check_position(c.cue_ball, "cue_ball").empty(); ++i)
+  for (int i = 0; i < 20 && sc.check_position(c.cue_ball, {"cue_ball"}); ++i)
     c.cue_ball = random_spot(s, sc);
-  if (!sc.check_position(c.cue_ball, "cue_ball").empty()) {
+  if (sc.check_position(c.cue_ball, {"cue_ball"})) {
     sc.pockets.clear();  // a table too small for the ball beside its pockets
     c.kind = c.kind.substr(0, c.kind.find(','));
   }
@@ -215,7 +215,7 @@ Case draw_case(Sampler& s) {
         break;
     }
     sc.obstacles.push_back(o);
-    if (!sc.validate().empty() || !sc.check_position(c.cue_ball, "cue_ball").empty())
+    if (sc.validate() || sc.check_position(c.cue_ball, {"cue_ball"}))
       sc.obstacles.pop_back();
   }
 
@@ -261,7 +261,7 @@ Case draw_case(Sampler& s) {
   return c;
 }
 
-// Spoils one field of a case; the message must then hold `bad_field`.
+// Spoils one field of a case; its error must then name `bad_field` (as FieldPath::text()).
 void spoil(Sampler& s, Case* c) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
@@ -270,48 +270,48 @@ void spoil(Sampler& s, Case* c) {
   switch (s.index(18)) {
     case 0:
       sc.length = 0.0;
-      c->bad_field = "table.length";
+      c->bad_field = "length";
       break;
     case 1:
       sc.length = s.chance(0.5) ? -1.0 : nan;
-      c->bad_field = "table.length";
+      c->bad_field = "length";
       break;
     case 2:
       sc.width = s.chance(0.5) ? 0.0 : inf;
-      c->bad_field = "table.width";
+      c->bad_field = "width";
       break;
     case 3:  // no room for a ball
       sc.length = sc.width = sc.contact_offset();
-      c->bad_field = "table.length";
+      c->bad_field = "length";
       break;
     case 4:
       sc.ball_and_cushion.radius = -0.02;
       sc.ball_and_cushion.cushion_height = -0.028;
-      c->bad_field = "radius";
+      c->bad_field = "ball_and_cushion.radius";
       break;
     case 5:
       sc.ball_and_cushion.mass = s.chance(0.5) ? 0.0 : nan;
-      c->bad_field = "mass";
+      c->bad_field = "ball_and_cushion.mass";
       break;
     case 6:
       sc.ball_and_cushion.restitution = 0.0;
-      c->bad_field = "restitution";
+      c->bad_field = "ball_and_cushion.restitution";
       break;
     case 7:
       sc.cloth.gravity = s.chance(0.5) ? 0.0 : nan;
-      c->bad_field = "physics.gravity";
+      c->bad_field = "cloth.gravity";
       break;
     case 8:
       sc.cloth.mu_roll = 0.0;
-      c->bad_field = "physics.mu_roll";
+      c->bad_field = "cloth.mu_roll";
       break;
     case 9:
       sc.cloth.mu_slide = s.chance(0.5) ? nan : -0.2;
-      c->bad_field = "physics.mu_slide";
+      c->bad_field = "cloth.mu_slide";
       break;
     case 10:
       sc.cloth.mu_spin = s.chance(0.5) ? -1.0 : inf;
-      c->bad_field = "physics.mu_spin";
+      c->bad_field = "cloth.mu_spin";
       break;
     case 11:
       sc.pockets.insert(sc.pockets.begin(), Pocket{{0.0, 0.0}, s.chance(0.5) ? nan : -0.05});
@@ -333,15 +333,15 @@ void spoil(Sampler& s, Case* c) {
       break;
     case 15:
       c->shot.speed = s.chance(0.5) ? 0.0 : (s.chance(0.5) ? nan : -1.0);
-      c->bad_field = "speed";
+      c->bad_field = "shot.speed";
       break;
     case 16:
       if (s.chance(0.5)) {
         c->shot.aim_deg = inf;
-        c->bad_field = "aim_deg";
+        c->bad_field = "shot.aim_deg";
       } else {
         (s.chance(0.5) ? c->shot.topspin_k : c->shot.sidespin_k) = nan;
-        c->bad_field = std::isnan(c->shot.topspin_k) ? "topspin_k" : "sidespin_k";
+        c->bad_field = std::isnan(c->shot.topspin_k) ? "shot.topspin_k" : "shot.sidespin_k";
       }
       break;
     default:
@@ -445,7 +445,8 @@ int run(const Options& opt) {
     }
     if (!c.bad_field.empty()) {
       ++refused;
-      if (r.status == ShotStatus::invalid_input && r.message.find(c.bad_field) != std::string::npos)
+      if (r.status == ShotStatus::invalid_input && r.error && r.error->field.text() == c.bad_field &&
+          r.message.find(c.bad_field) != std::string::npos)
         ++refused_right;
       else
         fail.add("bad input not refused by name",
@@ -474,8 +475,8 @@ int run(const Options& opt) {
     const EventType last = r.events.back().type;
     const bool consistent =
         (r.status == ShotStatus::rest && last == EventType::rest) ||
-        (r.status == ShotStatus::pocketed && last == EventType::pocket && r.pocketed) ||
-        (r.status == ShotStatus::hit_obstacle && last == EventType::obstacle && r.hit_obstacle) ||
+        (r.status == ShotStatus::pocketed && last == EventType::pocket) ||
+        (r.status == ShotStatus::hit_obstacle && last == EventType::obstacle) ||
         r.status == ShotStatus::event_limit ||
         (r.status == ShotStatus::impact_failed && r.message.find("cushion") == 0);
     if (!consistent)

@@ -8,9 +8,11 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cueplan/physics/validation.hpp"
 #include "cueplan/physics/vec3.hpp"
 
 namespace cueplan::physics {
@@ -31,8 +33,8 @@ struct CushionParams {
   double sin_theta() const { return (cushion_height - radius) / radius; }
   double cos_theta() const;
 
-  // Empty when usable; otherwise one line naming the field and what is wrong.
-  std::string validate() const;
+  // Empty when usable; otherwise the first broken rule, fields named as the members here.
+  Validation validate() const;
 };
 
 // Snooker defaults with the cushion height kept at 7R/5 of the given radius.
@@ -112,6 +114,11 @@ struct ImpactOptions {
   // 0 matches it to the table's accuracy (ImpactTable::fallback_tolerance()).
   double table_fallback_tolerance = 0.0;
   std::vector<TraceSample>* trace = nullptr;  // optional slip history (exact, paper)
+
+  // Empty when every field is in range (those of the other methods too); otherwise the
+  // first broken rule, fields named as these members. (resolve_impact also needs a
+  // table for method table.)
+  Validation validate() const;
 };
 
 constexpr int kMaxTransitions = 16;
@@ -119,6 +126,9 @@ constexpr int kMaxTransitions = 16;
 struct ImpactResult {
   ImpactStatus status = ImpactStatus::invalid_input;
   std::string message;  // why, when the status is not ok
+  // invalid_input: the broken rule; fields named as CushionParams' members, the
+  // incoming state's ({"velocity", "y"}, {"spin", "z"}) and ImpactOptions' members.
+  std::optional<ValidationError> error;
   ImpactMethod method_used = ImpactMethod::exact;
 
   BallState outgoing;              // cushion frame, same units as the input

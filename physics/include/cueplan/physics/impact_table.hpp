@@ -42,8 +42,8 @@ struct ImpactTableOptions {
   double cell_tolerance = 5e-7;
   int threads = 0;  // build threads; 0: all cores (does not change the table)
 
-  // Empty when usable; otherwise one line naming the field and what is wrong.
-  std::string validate() const;
+  // Empty when usable; otherwise the first broken rule, fields named as the members here.
+  Validation validate() const;
 };
 
 // What the build measured: errors of interpolation against the exact method at test
@@ -65,16 +65,12 @@ struct ImpactTableError {
 class ImpactTable {
  public:
   // Builds the table for the dimensionless parameters of `params` (theta, mu_w,
-  // mu_s, e). Takes seconds; use load_or_build to keep it between runs. Invalid
-  // params or options give an empty table, which covers nothing.
+  // mu_s, e). Takes seconds; keep it between runs with save() and load() (where is the
+  // caller's choice: the command line keeps a cache directory). Invalid params or
+  // options give an empty table, which covers nothing.
   static ImpactTable build(const CushionParams& params, const ImpactTableOptions& options = {});
 
-  // Loads a cached table for these parameters and options from `cache_dir`, or
-  // builds and saves one there. `note`, when given, says which happened.
-  static ImpactTable load_or_build(const CushionParams& params, const ImpactTableOptions& options,
-                                   const std::string& cache_dir, std::string* note = nullptr);
-
-  // The file name load_or_build uses: it encodes the format version, the
+  // A file name for a cache of tables: it encodes the format version, the
   // dimensionless parameters and the options that shape the table.
   static std::string cache_file_name(const CushionParams& params,
                                      const ImpactTableOptions& options);
@@ -87,6 +83,9 @@ class ImpactTable {
 
   // True when the table was built for the same dimensionless parameters.
   bool covers(const CushionParams& params) const;
+  // True when the table has the shape (nodes, k range, cell tolerance) `options` ask
+  // for; the build's thread count does not shape it.
+  bool built_with(const ImpactTableOptions& options) const;
   // True when the table holds nothing (failed build).
   bool empty() const { return nodes_.empty(); }
 
@@ -161,9 +160,5 @@ class ImpactTable {
   std::vector<double> roll_nodes_;
   std::vector<uint8_t> roll_stencil_;
 };
-
-// Where tables are cached by default: $CUEPLAN_CACHE_DIR, else
-// $XDG_CACHE_HOME/cueplan, else $HOME/.cache/cueplan, else a temporary directory.
-std::string default_table_cache_dir();
 
 }  // namespace cueplan::physics

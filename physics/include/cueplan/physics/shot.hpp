@@ -10,10 +10,12 @@
 // Pure functions of their arguments: no globals, safe from many threads.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cueplan/physics/cushion_impact.hpp"
+#include "cueplan/physics/validation.hpp"
 
 namespace cueplan::physics {
 
@@ -33,6 +35,10 @@ struct ClothParams {
   double gravity = 9.81;    // m/s^2
 };
 
+// Capture radius of a standard pocket (m): a ball whose centre comes this close to the
+// pocket's point drops.
+inline constexpr double kDefaultPocketRadius = 0.045;
+
 struct Pocket {
   Vec2 centre;          // m, table frame
   double radius = 0.0;  // m, a ball whose centre enters this circle is pocketed
@@ -50,15 +56,44 @@ struct Scene {
   double radius() const { return ball_and_cushion.radius; }
   // Distance from a cushion nose line at which the ball's centre meets it: R cos(theta).
   double contact_offset() const;
-  // Empty when usable; otherwise one line naming the field.
-  std::string validate() const;
-  // Where the ball may rest: inside the cushions, not in a pocket or an obstacle.
-  // Empty when the position is fine; otherwise why not, naming `what`.
-  std::string check_position(Vec2 position, const std::string& what) const;
+  // Empty when usable; otherwise the first broken rule, fields named as the members
+  // here: {"length"}, {"cloth", "mu_roll"}, {"ball_and_cushion", "mass"},
+  // {"pockets", 2, "radius"}, {"obstacles", 1}.
+  Validation validate() const;
+  // Where a ball may rest: inside the cushions, not in a pocket or an obstacle.
+  // Empty when the position is fine; otherwise why not, the field named `what` (a
+  // pocket or obstacle it meets is the error's `other`, named as in validate()).
+  Validation check_position(Vec2 position, const FieldPath& what) const;
 };
 
-// Snooker table with the six standard pockets.
+// Snooker table with the six standard pockets (capture radius kDefaultPocketRadius), in
+// the order bottom left, bottom middle, bottom right, top left, top middle, top right.
 Scene snooker_scene();
+// The six standard pockets of a table: the corners and the middles of the long cushions
+// y = 0 and y = width, in snooker_scene()'s order.
+std::vector<Pocket> standard_pockets(double length, double width, double radius);
+
+// A scene checked once, for the simulations that follow (in the spirit of MuJoCo's
+// mjModel): simulate() takes it and checks nothing about the scene again.
+class CompiledScene {
+ public:
+  // Checks `scene`; error() says what is wrong with it, if anything.
+  explicit CompiledScene(Scene scene);
+
+  const Scene& scene() const { return scene_; }
+  // The broken rule when the scene is unusable (Scene::validate()'s); empty otherwise.
+  const Validation& error() const { return error_; }
+  bool ok() const { return !error_.has_value(); }
+
+ private:
+  Scene scene_;
+  Validation error_;
+};
+
+// A centred-impulse cue whose tip is d from the ball's centre gives spin k = (5/2) d / R
+// (PHYSICS.md, "Cue strike"); the miscue limit d <= R/2 bounds sqrt(k_T^2 + k_S^2) by 1.25.
+inline constexpr double kSpinPerTipOffset = 2.5;
+inline constexpr double kMiscueSpin = 1.25;
 
 // A stroke: speed V (m/s) along aim phi (deg from +x), topspin k_T and sidespin k_S in
 // the paper's dimensionless form (PHYSICS.md, "Cue strike").
@@ -67,6 +102,10 @@ struct Shot {
   double aim_deg = 0.0;
   double topspin_k = 0.0;
   double sidespin_k = 0.0;
+
+  // Empty when it can be played (speed > 0, everything finite); otherwise the first
+  // broken rule, fields named as these members.
+  Validation validate() const;
 };
 
 enum class EventType {
@@ -132,11 +171,12 @@ ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& o
 struct ShotResult {
   ShotStatus status = ShotStatus::invalid_input;
   std::string message;
+  // invalid_input: the broken rule; fields named as Scene's members (see
+  // Scene::validate), {"cue_ball"}, {"shot", "speed"} and the like, {"max_events"}.
+  std::optional<ValidationError> error;
   Vec2 final_position;
   double duration = 0.0;  // s from the strike to rest (or to the end event)
   int cushion_hits = 0;
-  bool pocketed = false;
-  bool hit_obstacle = false;
   double max_cushion_normal_speed = 0.0;  // m/s; above the rigid limit the model is flagged
   bool rigid_limit_exceeded = false;
   ImpactMethod impact_method = ImpactMethod::exact;  // chosen_impact_method()
@@ -145,7 +185,11 @@ struct ShotResult {
   std::vector<PathSegment> path;  // when record_path
 };
 
-// Simulates one stroke of the cue ball from `cue_ball` on `scene`.
+// Simulates one stroke of the cue ball from `cue_ball` on `scene`, which was checked
+// when it was compiled (an unusable one gives invalid_input with its error).
+ShotResult simulate(const CompiledScene& scene, Vec2 cue_ball, const Shot& shot,
+                    const SimulationOptions& options = {});
+// The same for a scene checked on this call, for callers that simulate it once.
 ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
                     const SimulationOptions& options = {});
 

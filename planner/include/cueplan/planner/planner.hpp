@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,15 +38,16 @@ bool parse_global_method(const std::string& name, GlobalMethod* method);
 bool parse_local_method(const std::string& name, LocalMethod* method);
 
 // A player's execution error: independent Gaussian errors on each stroke. A noisy
-// tip offset beyond the miscue limit (sqrt(k_T^2 + k_S^2) above the larger of 1.25,
-// i.e. d > R/2, and the problem's spin limit) is a miscue and counts as a failure,
+// tip offset beyond the miscue limit (sqrt(k_T^2 + k_S^2) above the larger of
+// physics::kMiscueSpin, i.e. d > R/2, and the problem's spin limit) is a miscue and counts as a failure,
 // as does a noisy speed that is not positive; spin is never clamped.
 struct NoiseModel {
   double aim_deg = 0.125;      // standard deviation of the aim (deg)
   double speed = 0.075;        // standard deviation of the speed (m/s)
   double tip_offset = 0.0005;  // standard deviation of the tip offset each way (m); k = 2.5 d / R
   double scale = 1.0;          // multiplies every deviation (--noise)
-  std::string validate() const;
+  // Empty when usable; otherwise the first broken rule, fields named as these members.
+  physics::Validation validate() const;
 };
 
 // The answer depends on the options and the seed only, not on `threads`, as long as
@@ -83,17 +85,33 @@ struct PlannerOptions {
   // probabilities and the robust polish use `simulation` as it is (fast with a table).
   bool verify_exact = true;
 
-  // Empty when usable; otherwise one line naming the field.
-  std::string validate() const;
+  // Empty when usable; otherwise the first broken rule, fields named as these members
+  // ({"max_evaluations"}, {"noise", "scale"}, {"simulation", "impact_accuracy"}).
+  physics::Validation validate() const;
 };
 
 enum class PlanStatus {
-  solved,            // the best shot stops within the tolerance and meets every constraint
-  unreachable,       // every local polish converged (or stopped improving) short of the target
-  budget_exhausted,  // evaluations or time ran out before a solution was found
-  invalid_input,     // nothing searched; message names the field
+  solved,             // the best shot stops within the tolerance and meets every constraint
+  no_solution_found,  // every local polish converged (or stopped improving) short of the
+                      // target: a strong hint that none exists, not a proof (message says why)
+  budget_exhausted,   // evaluations or time ran out before a solution was found
+  invalid_input,      // nothing searched; message names the field
 };
 const char* to_string(PlanStatus status);
+
+// A way of playing the shot, as a coach names it: the cushions met in order and the
+// signs of the spins, with a band around zero (under half a quarter tip) for stun and
+// no side. Strokes of equal families are "the same way" of playing it.
+struct Family {
+  std::vector<int> route;    // cushions in the order met (ShotEvent::cushion)
+  int topspin = 0;           // +1 follow, 0 stun, -1 draw
+  int sidespin = 0;          // +1 right, 0 none, -1 left
+  bool ended_early = false;  // pocketed or obstacle: not a way to the target
+
+  auto operator<=>(const Family&) const = default;
+};
+// In words, e.g. "2 cushions (y = W, x = L), follow, right spin".
+std::string describe(const Family& family);
 
 // A stroke and what it does.
 struct PlannedShot {
@@ -107,7 +125,8 @@ struct PlannedShot {
   bool rigid_limit_exceeded = false;
   double max_cushion_normal_speed = 0.0;  // m/s
   double success_probability = 0.0;  // of stopping within the tolerance under the noise
-  std::string family;                // route and spin in words, e.g. "2 cushions (y = 0, x = L), follow, right spin"
+  Family family_key;                 // the way it plays the shot
+  std::string family;                // family_key in words, e.g. "2 cushions (y = 0, x = L), follow, right spin"
   bool solves = false;               // within the tolerance and breaks no constraint
   std::string violations;            // constraints broken, in words; empty when none
   physics::ImpactMethod impact_method = physics::ImpactMethod::exact;  // that gave this outcome
@@ -116,6 +135,10 @@ struct PlannedShot {
 struct PlanResult {
   PlanStatus status = PlanStatus::invalid_input;
   std::string message;               // why, in a sentence (always set)
+  // invalid_input: the broken rule, its fields named as PlannerOptions' members or, for
+  // the problem, as Problem's ({"scene", "length"}, {"cue_ball"}; problems::file_field
+  // names them as the file does, and the message does so already).
+  std::optional<physics::ValidationError> error;
   PlannedShot best;
   std::vector<PlannedShot> alternatives;  // distinct families, best first
   int evaluations = 0;               // shot simulations made (search and robustness)

@@ -42,6 +42,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,8 +81,8 @@ struct RouteOptions {
   // Simulation while planning; the returned route is re-simulated exactly (1e-9).
   physics::SimulationOptions simulation = planning_simulation();
 
-  // Empty when usable; otherwise one line naming the field.
-  std::string validate() const;
+  // Empty when usable; otherwise the first broken rule, fields named as these members.
+  physics::Validation validate() const;
 
   static physics::SimulationOptions planning_simulation() {
     physics::SimulationOptions s;
@@ -113,6 +114,8 @@ struct RouteStroke {
 struct RouteResult {
   RouteStatus status = RouteStatus::invalid_input;
   std::string message;  // why, in a sentence (always set)
+  // invalid_input: the broken rule, fields named as RouteOptions' or Problem's members.
+  std::optional<physics::ValidationError> error;
   std::vector<RouteStroke> strokes;  // solved: the route, first stroke first
   double route_success_probability = 0.0;  // product of the strokes' (solved)
   double time_s = 0.0;                     // wall clock, all stages

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,8 @@ struct SpinMapOptions {
   physics::SimulationOptions simulation;
   // Called now and then with the fraction done (0..1), from the calling thread.
   std::function<void(double)> progress;
-  std::string validate() const;
+  // Empty when usable; otherwise the first broken rule, fields named as these members.
+  physics::Validation validate() const;
 };
 
 struct SpinMapPoint {
@@ -43,6 +45,9 @@ struct SpinMap {
   std::vector<SpinMapPoint> points;  // the grid points inside the disc, row by row
   int landing = 0;                   // how many land
   std::string message;               // set when the inputs were invalid (points empty)
+  // The broken rule when the inputs were invalid: SpinMapOptions' members, {"speed"},
+  // {"aim_deg"}, or the problem's (Problem's members, as problems::validate names them).
+  std::optional<physics::ValidationError> error;
 };
 
 SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,

@@ -17,8 +17,10 @@
 namespace cueplan::problems {
 
 // Defaults of the fields a file may leave out (problems/README.md lists them all).
-inline constexpr double kDefaultPocketRadius = 0.045;  // m, capture circle of a pocket
-inline constexpr double kDefaultTolerance = 0.02;      // m, radius of the landing zone
+inline constexpr double kDefaultPocketRadius = physics::kDefaultPocketRadius;  // m
+inline constexpr double kDefaultTolerance = 0.02;  // m, radius of the landing zone
+// The most strokes a route may take (max_strokes).
+inline constexpr int kMostStrokes = 100;
 
 // The cue's aim phi (deg from +x, counter-clockwise), as the planner may choose it.
 enum class AimMode {
@@ -37,7 +39,7 @@ struct AimLimit {
 struct Limits {
   double speed_min = 0.2;  // m/s, cue-ball speed V just after the strike; > 0
   double speed_max = 4.5;  // m/s; > speed_min
-  double spin_max = 1.25;  // max sqrt(k_T^2 + k_S^2), the miscue limit; > 0
+  double spin_max = physics::kMiscueSpin;  // max sqrt(k_T^2 + k_S^2); > 0
   AimLimit aim;            // free unless the file says otherwise
   int cushions_min = 1;    // cushion contacts allowed before the ball rests; >= 0
   int cushions_max = 3;    // >= cushions_min
@@ -58,6 +60,26 @@ struct Problem {
   std::optional<double> time_budget_s;
 };
 
+// Empty when the problem can be planned; otherwise the first broken rule, fields named
+// as the members of Problem: {"scene", "length"}, {"scene", "cloth", "mu_roll"},
+// {"cue_ball"}, {"limits", "speed_max"}, ... The one check of a problem: the loader runs
+// it on every file, the planners on every problem they are given.
+physics::Validation validate(const Problem& problem);
+
+// A field of Problem (a path as validate() names it) as the problem file names it:
+// {"scene", "length"} -> "table.length", {"scene", "ball_and_cushion", "mu_table"} ->
+// "physics.mu_slide", {"limits", "speed_min"} -> "limits.speed[0]", a standard pocket
+// {"scene", "pockets", 0} -> "the bottom_left pocket".
+std::string file_field(const physics::FieldPath& path);
+// The error in the file's words: "FIELD RULE, got VALUE".
+std::string file_message(const physics::ValidationError& error);
+
+// Names of the standard pockets in physics::standard_pockets' order: bottom_left (0, 0),
+// bottom_middle (L/2, 0), bottom_right (L, 0), top_left (0, W), top_middle (L/2, W),
+// top_right (L, W).
+inline constexpr const char* kPocketNames[6] = {"bottom_left", "bottom_middle", "bottom_right",
+                                                "top_left",    "top_middle",    "top_right"};
+
 // Either a problem or one line saying what is wrong, never both.
 //   "FILE:LINE: FIELD: message"  for a field (LINE counts from 1; FIELD is a path such as
 //                                 table.length, limits.speed[1] or obstacles[2]);
@@ -66,6 +88,11 @@ struct Problem {
 struct LoadResult {
   std::optional<Problem> problem;
   std::string error;
+  // The field of the file the error is about (as in the message: "table.length",
+  // "limits.speed[1]", "(document)", "yaml"; empty when the file cannot be read) and
+  // its line (from 1; 0 when unknown), for callers that show them apart.
+  std::string field;
+  int line = 0;
 
   bool ok() const { return problem.has_value(); }
 };
