@@ -60,8 +60,8 @@ const std::vector<Sample>& rolling_samples() {
 }
 
 const ImpactTable& table() {
-  static const ImpactTable t =
-      cueplan::cli::load_or_build_table(CushionParams{}, ImpactTableOptions{}, cueplan::cli::default_table_cache_dir());
+  static const ImpactTable t = cueplan::cli::load_or_build_table(
+      CushionParams{}, ImpactTableOptions{}, cueplan::cli::default_table_cache_dir());
   return t;
 }
 

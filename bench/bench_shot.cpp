@@ -3,7 +3,9 @@
 // the exact impact method.
 //
 // Each benchmark cycles through 256 shots near a base shot (seeded jitter of aim,
-// speed and spin), so a run does not time one lucky path.
+// speed and spin), so a run does not time one lucky path. The scene is compiled (checked)
+// once, as the planner does; BM_ShotCheckingTheScene times the one-off form that checks
+// the scene on every call.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -37,8 +39,8 @@ Scene scene(bool with_obstacles) {
 }
 
 const ImpactTable& table() {
-  static const ImpactTable t =
-      cueplan::cli::load_or_build_table(CushionParams{}, ImpactTableOptions{}, cueplan::cli::default_table_cache_dir());
+  static const ImpactTable t = cueplan::cli::load_or_build_table(
+      CushionParams{}, ImpactTableOptions{}, cueplan::cli::default_table_cache_dir());
   return t;
 }
 
@@ -54,7 +56,7 @@ std::vector<Shot> jittered(const Shot& base) {
 
 void BM_Shot(benchmark::State& state, int which, bool obstacles, bool use_table) {
   const Case& c = kCases[which];
-  const Scene s = scene(obstacles);
+  const CompiledScene s(scene(obstacles));
   SimulationOptions o;
   o.record_path = false;
   if (use_table) {
@@ -77,6 +79,21 @@ void BM_Shot(benchmark::State& state, int which, bool obstacles, bool use_table)
   state.counters["mean_cushions"] = cushions / static_cast<double>(shots.size());
 }
 
+// The same shots through simulate(const Scene&), which checks the scene on every call.
+void BM_ShotCheckingTheScene(benchmark::State& state, int which, bool obstacles) {
+  const Scene s = scene(obstacles);
+  SimulationOptions o;
+  o.record_path = false;
+  const std::vector<Shot> shots = jittered(kCases[which].base);
+  size_t i = 0;
+  for (auto _ : state) {
+    const ShotResult r = simulate(s, {0.8, 0.5}, shots[i], o);
+    benchmark::DoNotOptimize(r.final_position);
+    if (++i == shots.size()) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void register_all() {
   for (int which = 0; which < 3; ++which)
     for (bool obstacles : {false, true})
@@ -86,6 +103,11 @@ void register_all() {
                            (use_table ? "/table" : "/exact");
         benchmark::RegisterBenchmark(name.c_str(), BM_Shot, which, obstacles, use_table);
       }
+  for (bool obstacles : {false, true}) {
+    const std::string name = std::string("BM_ShotCheckingTheScene/one_cushion") +
+                             (obstacles ? "/obstacles" : "/open") + "/exact";
+    benchmark::RegisterBenchmark(name.c_str(), BM_ShotCheckingTheScene, 0, obstacles);
+  }
 }
 
 }  // namespace

@@ -14,10 +14,19 @@ class App;
 
 namespace cueplan::cli {
 
+// The impact method of the commands that simulate one shot or a batch (rebound,
+// simulate): the library's own default, exact.
+inline const std::string kShotImpactMethod =
+    physics::to_string(physics::SimulationOptions{}.impact_method);
+// The impact method of the commands that search thousands of strokes (solve, spinmap):
+// the table, the fast path (their reported strokes are verified exactly).
+inline const std::string kSearchImpactMethod = physics::to_string(physics::ImpactMethod::table);
+
+// The flags of the commands that search.
 struct ImpactArgs {
-  std::string method = "table";  // exact, paper or table
-  double accuracy = 1e-9;        // relative error wanted from each cushion impact
-  std::string table_cache;       // empty: physics::default_table_cache_dir()
+  std::string method = kSearchImpactMethod;  // exact, paper or table
+  double accuracy = physics::SimulationOptions{}.impact_accuracy;  // relative, per impact
+  std::string table_cache;  // empty: default_table_cache_dir() (table_cache.hpp)
 };
 
 // Registers --method, --accuracy and --table-cache on `command`, in `group`; the flags

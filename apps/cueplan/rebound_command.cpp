@@ -267,8 +267,9 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
       "Frames: the cushion frame has X along the cushion, Y from the ball into the cushion and "
       "Z up; the rebound angle is measured from +X like alpha (a mirror reflection gives "
       "rebound angle = alpha).\n"
-      "Normal speeds V0 sin(alpha) above 2.5 m/s are solved but flagged: the rigid-cushion "
-      "model is not trusted there.\n"
+      "Normal speeds V0 sin(alpha) above " +
+      number(physics::CushionParams{}.rigid_speed_limit, "m/s") +
+      " are solved but flagged: the rigid-cushion model is not trusted there.\n"
       "Exit codes: 0 done (also when only flagged), 1 no usable result, 2 bad input.\n"
       "Example: cueplan rebound --speed 1 --angle 45 --topspin-k 1 --sidespin-k 0");
 }

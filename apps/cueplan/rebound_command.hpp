@@ -22,9 +22,9 @@ struct ReboundArgs {
   double sidespin_k = 0.0;  // --sidespin-k, k_S = w_S R / V0
   double topspin = 0.0;     // rad/s, --topspin (replaces --topspin-k when given)
   double sidespin = 0.0;    // rad/s, --sidespin (replaces --sidespin-k when given)
-  std::string method = "exact";
-  int steps = 5000;          // paper scheme N
-  double tolerance = 1e-12;  // exact method
+  std::string method = physics::to_string(physics::ImpactOptions{}.method);
+  int steps = physics::ImpactOptions{}.paper_steps;      // paper scheme N
+  double tolerance = physics::ImpactOptions{}.tolerance;  // exact method
   // --mass, --radius, --mu-cushion, --mu-table, --restitution, --cushion-height;
   // the cushion height becomes 7R/5 of the radius unless given.
   physics::CushionParams params;

@@ -340,8 +340,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   const char* method = "Cushion impacts";
   c.add_option("--method", args_.method,
                "exact (adaptive integrator with stick/slip events), paper (the paper's "
-               "fixed-step scheme, 5000 steps) or table (precomputed surrogate: the fast path "
-               "for many shots; built once, about 30 s on 2 cores, then loaded from the cache)")
+               "fixed-step scheme, " + std::to_string(phys::ImpactOptions{}.paper_steps) +
+                   " steps) or table (precomputed surrogate: the fast path for many shots; built "
+                   "once, about 30 s on 2 cores, then loaded from the cache)")
       ->type_name("exact|paper|table")
       ->capture_default_str()
       ->group(method);
@@ -399,8 +400,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       "Frame: the origin is where the cushion noses x = 0 and y = 0 meet; x runs along the "
       "length, y along the width; cushions are named by their nose lines.\n"
       "Status: rest, pocketed, hit_obstacle, event_limit (more than --max-events events) or "
-      "impact_failed. A cushion met faster than 2.5 m/s along its normal is solved but "
-      "flagged: the rigid-cushion model is not trusted there.\n"
+      "impact_failed. A cushion met faster than " +
+      number(phys::CushionParams{}.rigid_speed_limit, "m/s") +
+      " along its normal is solved but flagged: the rigid-cushion model is not trusted there.\n"
       "Exit codes: 0 simulated (at rest, pocketed or against an obstacle), 1 the simulation "
       "stopped without an outcome (event_limit, impact_failed), 2 bad input.\n"
       "Example: cueplan simulate problems/one_rail_position.yaml --speed 1.002 --aim -60.36 "

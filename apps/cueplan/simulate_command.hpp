@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cueplan/physics/shot.hpp"
+#include "impact_setup.hpp"
 
 namespace CLI {
 class App;
@@ -30,9 +31,9 @@ struct SimulateArgs {
   double aim_deg = NAN;      // deg from +x, counter-clockwise, --aim
   double topspin_k = 0.0;    // --topspin-k, k_T; 0 is a centre-ball strike
   double sidespin_k = 0.0;   // --sidespin-k, k_S; > 0 right spin
-  std::string method = "exact";
-  double accuracy = 1e-9;   // relative error wanted from each cushion impact
-  std::string table_cache;  // empty: physics::default_table_cache_dir()
+  std::string method = kShotImpactMethod;
+  double accuracy = physics::SimulationOptions{}.impact_accuracy;  // relative, per impact
+  std::string table_cache;  // empty: default_table_cache_dir() (table_cache.hpp)
   int max_events = 200;
   bool json = false;
   std::string svg_file;  // empty: no drawing

@@ -11,6 +11,8 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/physics/parallel.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cfloat>
@@ -886,21 +888,17 @@ std::string ImpactTable::cache_file_name(const CushionParams& params,
   // (whose sin(theta) differs in the last bits) finds the same file; load_or_build
   // still checks that the loaded table covers the parameters.
   const double s = params.sin_theta();
-  char key[512];
-  std::snprintf(key, sizeof key, "v%u %.12g %.12g %.12g %.12g %.17g %.17g %d %d %d %d %d",
-                kFormatVersion, s, params.mu_cushion, params.mu_table, params.restitution,
-                options.k_max, options.cell_tolerance, options.alpha_nodes, options.topspin_nodes,
-                options.sidespin_nodes, options.roll_alpha_nodes, options.roll_sidespin_nodes);
-  const uint64_t h = fnv1a(key, std::strlen(key));
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "impact_table_v%u_s%.6g_mw%.6g_ms%.6g_e%.6g_n%dx%dx%d_r%dx%d_k%g_tol%g_"
-                "%016llx.bin",
-                kFormatVersion, s, params.mu_cushion, params.mu_table, params.restitution,
-                options.alpha_nodes, options.topspin_nodes, options.sidespin_nodes,
-                options.roll_alpha_nodes, options.roll_sidespin_nodes, options.k_max,
-                options.cell_tolerance, static_cast<unsigned long long>(h));
-  return buf;
+  const std::string key = fmt::format(
+      "v{} {:.12g} {:.12g} {:.12g} {:.12g} {:.17g} {:.17g} {} {} {} {} {}", kFormatVersion, s,
+      params.mu_cushion, params.mu_table, params.restitution, options.k_max,
+      options.cell_tolerance, options.alpha_nodes, options.topspin_nodes, options.sidespin_nodes,
+      options.roll_alpha_nodes, options.roll_sidespin_nodes);
+  const uint64_t h = fnv1a(key.data(), key.size());
+  return fmt::format(
+      "impact_table_v{}_s{:.6g}_mw{:.6g}_ms{:.6g}_e{:.6g}_n{}x{}x{}_r{}x{}_k{:g}_tol{:g}_{:016x}.bin",
+      kFormatVersion, s, params.mu_cushion, params.mu_table, params.restitution,
+      options.alpha_nodes, options.topspin_nodes, options.sidespin_nodes, options.roll_alpha_nodes,
+      options.roll_sidespin_nodes, options.k_max, options.cell_tolerance, h);
 }
 
 bool ImpactTableAccess::save(const ImpactTable& t, const std::string& path) {

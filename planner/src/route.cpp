@@ -666,6 +666,122 @@ physics::Validation RouteOptions::validate() const {
 
 void quiet_ompl_messages() { ompl::msg::setLogLevel(ompl::msg::LOG_ERROR); }
 
+namespace {
+
+// Stage 2: the OMPL problem - the table state space, the stroke control space, the
+// simulator as propagator, validity, the target-zone goal, the cost and the planner.
+std::unique_ptr<oc::SimpleSetup> make_setup(Context& ctx) {
+  const problems::Problem& problem = *ctx.problem;
+  const RouteOptions& options = *ctx.options;
+  auto space = std::make_shared<TableSpace>(problem.scene, options.max_strokes,
+                                            problem.limits.cushions_max);
+  space->setStateSamplerAllocator(
+      [&ctx](const ob::StateSpace* s) { return std::make_shared<TableSampler>(s, &ctx); });
+  auto controls = std::make_shared<oc::RealVectorControlSpace>(space, kControlDims);
+  {
+    const problems::Limits& l = problem.limits;
+    ob::RealVectorBounds b(kControlDims);
+    b.setLow(kSpeed, l.speed_min);
+    b.setHigh(kSpeed, l.speed_max);
+    b.setLow(kAim, l.aim.mode == problems::AimMode::free ? -180.0 : l.aim.lo_deg);
+    b.setHigh(kAim, l.aim.mode == problems::AimMode::free ? 180.0 : l.aim.hi_deg);
+    b.setLow(kTopspin, -l.spin_max);
+    b.setHigh(kTopspin, l.spin_max);
+    b.setLow(kSidespin, -l.spin_max);
+    b.setHigh(kSidespin, l.spin_max);
+    b.setLow(kSteerX, 0.0);
+    b.setHigh(kSteerX, problem.scene.length);
+    b.setLow(kSteerY, 0.0);
+    b.setHigh(kSteerY, problem.scene.width);
+    b.setLow(kSteerSeed, -1.0);
+    b.setHigh(kSteerSeed, kMostSeed);
+    controls->setBounds(b);
+  }
+  controls->setControlSamplerAllocator(
+      [&ctx](const oc::ControlSpace* c) { return std::make_shared<StrokeSampler>(c, &ctx); });
+
+  auto setup = std::make_unique<oc::SimpleSetup>(controls);
+  const oc::SpaceInformationPtr& si = setup->getSpaceInformation();
+  si->setMinMaxControlDuration(1, 1);
+  si->setPropagationStepSize(1.0);
+  if (options.sampler == RouteSampler::directed)
+    si->setDirectedControlSamplerAllocator([&ctx](const oc::SpaceInformation* s) {
+      return std::make_shared<SteeringSampler>(s, &ctx);
+    });
+  setup->setStatePropagator(std::make_shared<StrokePropagator>(si, &ctx));
+  setup->setStateValidityChecker([&problem, &options](const ob::State* s) {
+    const double* v = values(s);
+    if (!(v[kStrokes] <= options.max_strokes) || v[kX] == kOffTable) return false;
+    return !problem.scene.check_position({v[kX], v[kY]}, {"ball"});
+  });
+  ob::ScopedState<> first(space);
+  first[kX] = problem.cue_ball.x;
+  first[kY] = problem.cue_ball.y;
+  first[kRisk] = 0.0;
+  first[kCushions] = 0.0;
+  first[kStrokes] = 0.0;
+  setup->setStartState(first);
+  setup->setGoal(std::make_shared<TargetZone>(si, &ctx));
+  const bool any_route = options.stop_at_first_solution;
+  setup->getProblemDefinition()->setOptimizationObjective(
+      std::make_shared<StrokesThenRisk>(si, ctx.risk_weight, any_route));
+
+  const std::uint_fast32_t planner_seed = seed32(options.seed, kPlannerStream);
+  switch (options.planner) {
+    case RoutePlanner::sst: {
+      auto p = std::make_shared<SeededSst>(si, planner_seed);
+      p->setGoalBias(options.goal_bias);
+      p->setSelectionRadius(kSelectionRadius);
+      p->setPruningRadius(kPruningRadius);
+      setup->setPlanner(p);
+      break;
+    }
+    case RoutePlanner::rrt: {
+      auto p = std::make_shared<Seeded<oc::RRT>>(si, planner_seed);
+      p->setGoalBias(options.goal_bias);
+      setup->setPlanner(p);
+      break;
+    }
+    case RoutePlanner::kpiece1: {
+      auto p = std::make_shared<Seeded<oc::KPIECE1>>(si, planner_seed);
+      p->setGoalBias(options.goal_bias);
+      setup->setPlanner(p);
+      break;
+    }
+  }
+  return setup;
+}
+
+// Stage 3: the tree search until the time or propagation budget ends; true when it
+// found a route.
+bool search(Context& ctx, oc::SimpleSetup& setup, RouteResult* result) {
+  const RouteOptions& options = *ctx.options;
+  setup.setup();
+  ctx.search_start = Clock::now();
+  const Clock::time_point deadline =
+      ctx.search_start + std::chrono::duration_cast<Clock::duration>(
+                             std::chrono::duration<double>(options.max_time_s));
+  const ob::PlannerTerminationCondition stop([&]() {
+    if (Clock::now() >= deadline) return true;
+    return options.max_propagations > 0 && ctx.propagations >= options.max_propagations;
+  });
+  const ob::PlannerStatus status = setup.solve(stop);
+  ob::PlannerData data(setup.getSpaceInformation());
+  setup.getPlannerData(data);
+  result->tree_states = static_cast<int>(data.numVertices());
+  return status == ob::PlannerStatus::EXACT_SOLUTION;
+}
+
+// What the search was allowed, in words.
+std::string budget_text(const RouteOptions& options) {
+  return fmt::format("{:.3g} s", options.max_time_s) +
+         (options.max_propagations > 0
+              ? " or " + std::to_string(options.max_propagations) + " propagations"
+              : std::string());
+}
+
+}  // namespace
+
 RouteResult plan_route(const problems::Problem& problem, const RouteOptions& options) {
   const Clock::time_point start = Clock::now();
   Context ctx;
@@ -694,117 +810,21 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
     return finish(result, ctx, start);
   }
 
-  // 2. Setup.
-  auto space = std::make_shared<TableSpace>(problem.scene, options.max_strokes,
-                                            problem.limits.cushions_max);
-  space->setStateSamplerAllocator(
-      [&ctx](const ob::StateSpace* s) { return std::make_shared<TableSampler>(s, &ctx); });
-  auto controls = std::make_shared<oc::RealVectorControlSpace>(space, kControlDims);
-  {
-    const problems::Limits& l = problem.limits;
-    ob::RealVectorBounds b(kControlDims);
-    b.setLow(kSpeed, l.speed_min);
-    b.setHigh(kSpeed, l.speed_max);
-    b.setLow(kAim, l.aim.mode == problems::AimMode::free ? -180.0 : l.aim.lo_deg);
-    b.setHigh(kAim, l.aim.mode == problems::AimMode::free ? 180.0 : l.aim.hi_deg);
-    b.setLow(kTopspin, -l.spin_max);
-    b.setHigh(kTopspin, l.spin_max);
-    b.setLow(kSidespin, -l.spin_max);
-    b.setHigh(kSidespin, l.spin_max);
-    b.setLow(kSteerX, 0.0);
-    b.setHigh(kSteerX, problem.scene.length);
-    b.setLow(kSteerY, 0.0);
-    b.setHigh(kSteerY, problem.scene.width);
-    b.setLow(kSteerSeed, -1.0);
-    b.setHigh(kSteerSeed, kMostSeed);
-    controls->setBounds(b);
-  }
-  controls->setControlSamplerAllocator(
-      [&ctx](const oc::ControlSpace* c) { return std::make_shared<StrokeSampler>(c, &ctx); });
-
-  oc::SimpleSetup setup(controls);
-  const oc::SpaceInformationPtr& si = setup.getSpaceInformation();
-  si->setMinMaxControlDuration(1, 1);
-  si->setPropagationStepSize(1.0);
-  if (options.sampler == RouteSampler::directed)
-    si->setDirectedControlSamplerAllocator([&ctx](const oc::SpaceInformation* s) {
-      return std::make_shared<SteeringSampler>(s, &ctx);
-    });
-  setup.setStatePropagator(std::make_shared<StrokePropagator>(si, &ctx));
-  setup.setStateValidityChecker([&problem, &options](const ob::State* s) {
-    const double* v = values(s);
-    if (!(v[kStrokes] <= options.max_strokes) || v[kX] == kOffTable) return false;
-    return !problem.scene.check_position({v[kX], v[kY]}, {"ball"});
-  });
-  ob::ScopedState<> first(space);
-  first[kX] = problem.cue_ball.x;
-  first[kY] = problem.cue_ball.y;
-  first[kRisk] = 0.0;
-  first[kCushions] = 0.0;
-  first[kStrokes] = 0.0;
-  setup.setStartState(first);
-  setup.setGoal(std::make_shared<TargetZone>(si, &ctx));
-  const bool any_route = options.stop_at_first_solution;
-  setup.getProblemDefinition()->setOptimizationObjective(
-      std::make_shared<StrokesThenRisk>(si, ctx.risk_weight, any_route));
-
-  const std::uint_fast32_t planner_seed = seed32(options.seed, kPlannerStream);
-  switch (options.planner) {
-    case RoutePlanner::sst: {
-      auto p = std::make_shared<SeededSst>(si, planner_seed);
-      p->setGoalBias(options.goal_bias);
-      p->setSelectionRadius(kSelectionRadius);
-      p->setPruningRadius(kPruningRadius);
-      setup.setPlanner(p);
-      break;
-    }
-    case RoutePlanner::rrt: {
-      auto p = std::make_shared<Seeded<oc::RRT>>(si, planner_seed);
-      p->setGoalBias(options.goal_bias);
-      setup.setPlanner(p);
-      break;
-    }
-    case RoutePlanner::kpiece1: {
-      auto p = std::make_shared<Seeded<oc::KPIECE1>>(si, planner_seed);
-      p->setGoalBias(options.goal_bias);
-      setup.setPlanner(p);
-      break;
-    }
-  }
-
-  // 3. Search.
-  setup.setup();
-  ctx.search_start = Clock::now();
-  const Clock::time_point deadline =
-      ctx.search_start + std::chrono::duration_cast<Clock::duration>(
-                             std::chrono::duration<double>(options.max_time_s));
-  const ob::PlannerTerminationCondition stop([&]() {
-    if (Clock::now() >= deadline) return true;
-    return options.max_propagations > 0 && ctx.propagations >= options.max_propagations;
-  });
-  const ob::PlannerStatus status = setup.solve(stop);
-  {
-    ob::PlannerData data(si);
-    setup.getPlannerData(data);
-    result.tree_states = static_cast<int>(data.numVertices());
-  }
-  const double search_s = std::chrono::duration<double>(Clock::now() - ctx.search_start).count();
-  const std::string budget =
-      fmt::format("{:.3g} s", options.max_time_s) +
-      (options.max_propagations > 0 ? " or " + std::to_string(options.max_propagations) + " propagations"
-                                    : std::string());
-
-  if (status != ob::PlannerStatus::EXACT_SOLUTION) {
+  // 2. Setup, 3. search.
+  const std::unique_ptr<oc::SimpleSetup> setup = make_setup(ctx);
+  if (!search(ctx, *setup, &result)) {
+    const double search_s = std::chrono::duration<double>(Clock::now() - ctx.search_start).count();
     result.status = RouteStatus::budget_exhausted;
     result.message = "No route of at most " + std::to_string(options.max_strokes) +
                      (options.max_strokes == 1 ? " stroke" : " strokes") + " found within " +
-                     budget + fmt::format(" (searched {:.3g} s, {} states in the tree).", search_s,
-                                     result.tree_states);
+                     budget_text(options) +
+                     fmt::format(" (searched {:.3g} s, {} states in the tree).", search_s,
+                                 result.tree_states);
     return finish(result, ctx, start);
   }
 
   // 4. Verify: recover each stroke from its state and control, then re-simulate exactly.
-  const oc::PathControl& path = setup.getSolutionPath();
+  const oc::PathControl& path = setup->getSolutionPath();
   std::vector<physics::Shot> shots;
   for (unsigned i = 0; i < path.getControlCount(); ++i) {
     const double* v = values(path.getState(i));
@@ -814,7 +834,7 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
   if (!v.ok) {
     result.status = RouteStatus::budget_exhausted;
     result.message = "The route found did not hold up: " + v.why + "; no other route within " +
-                     budget + ".";
+                     budget_text(options) + ".";
     return finish(result, ctx, start);
   }
 
@@ -828,9 +848,9 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
   result.message = "Route of " + std::to_string(n) + (n == 1 ? " stroke" : " strokes") +
                    " found by " + to_string(options.planner) + " with the " +
                    to_string(options.sampler) + " sampler" +
-                   fmt::format("; its last stroke stops {:.2g} mm from the target when re-simulated "
-                               "exactly.",
-                          1e3 * result.strokes.back().planned.miss_distance);
+                   fmt::format("; its last stroke stops {:.2g} mm from the target when "
+                               "re-simulated exactly.",
+                               1e3 * result.strokes.back().planned.miss_distance);
   return finish(result, ctx, start);
 }
 

@@ -8,9 +8,9 @@
 namespace cueplan::planner::detail {
 
 struct Task {
-  // `problem` must outlive the task; it is checked by the caller (plan(), plan_route(),
+  // `checked` must outlive the task; it is checked by the caller (plan(), plan_route(),
   // spin_map() run problems::validate before anything else).
-  explicit Task(const problems::Problem& problem) : problem(problem), scene(problem.scene) {}
+  explicit Task(const problems::Problem& checked) : problem(checked), scene(checked.scene) {}
 
   // A stroke from the problem's cue ball.
   physics::ShotResult simulate(const physics::Shot& shot,

@@ -1,5 +1,7 @@
 #include "yaml_fields.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -62,11 +64,7 @@ bool plain_word(std::string_view key) {
   });
 }
 
-std::string format_number(double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", value);
-  return buf;
-}
+std::string format_number(double value) { return fmt::format("{:.10g}", value); }
 
 }  // namespace
 
@@ -100,9 +98,7 @@ std::string printable(std::string_view text) {
     } else if (c == '\t') {
       shown += "\\t";
     } else if (c < 0x20 || c == 0x7f) {
-      char code[8];
-      std::snprintf(code, sizeof code, "\\x%02x", static_cast<unsigned>(c));
-      shown += code;
+      shown += fmt::format("\\x{:02x}", static_cast<unsigned>(c));
     } else {
       shown += ch;
     }
