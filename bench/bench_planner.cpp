@@ -79,7 +79,7 @@ double percentile(std::vector<double> v, double q) {
 struct Stats {
   double success = 0.0, shipped = 0.0, generated = 0.0, median_ms = 0.0, p95_ms = 0.0,
          plans_per_s = 0.0, mean_evaluations = 0.0, mean_families = 0.0;
-  int unreachable = 0, exhausted = 0;
+  int no_solution = 0, exhausted = 0;
 };
 
 Stats stats(const std::vector<Run>& runs) {
@@ -99,7 +99,7 @@ Stats stats(const std::vector<Run>& runs) {
       ++n_gen;
       ok_gen += r.solved;
     }
-    s.unreachable += r.status == "unreachable";
+    s.no_solution += r.status == "no_solution_found";
     s.exhausted += r.status == "budget_exhausted";
   }
   const double n = static_cast<double>(runs.size());
@@ -146,11 +146,11 @@ std::string json_summary(const Summary& s, bool per_run) {
                 "\"plans\": %zu, \"success\": %.6g, \"success_shipped\": %.6g, "
                 "\"success_generated\": %.6g, \"median_ms\": %.6g, \"p95_ms\": %.6g, "
                 "\"plans_per_s\": %.6g, \"mean_evaluations\": %.6g, \"mean_families\": %.6g, "
-                "\"unreachable\": %d, \"budget_exhausted\": %d",
+                "\"no_solution_found\": %d, \"budget_exhausted\": %d",
                 s.global.c_str(), s.local.c_str(), s.label.c_str(), s.budget_s, s.max_evaluations,
                 s.runs.size(),
                 t.success, t.shipped, t.generated, t.median_ms, t.p95_ms, t.plans_per_s,
-                t.mean_evaluations, t.mean_families, t.unreachable, t.exhausted);
+                t.mean_evaluations, t.mean_families, t.no_solution, t.exhausted);
   std::string out = buf;
   if (!per_run) return out + "}";
   out += ", \"runs\": [";
@@ -172,7 +172,7 @@ void print_row(const Summary& s) {
   std::printf("| %s | %s | %.1f %% | %.0f %% | %.1f %% | %.2f ms | %.2f ms | %.0f | %.0f | %.1f | %d | %d |\n",
               s.global.c_str(), s.local.c_str(), 100 * t.success, 100 * t.shipped,
               100 * t.generated, t.median_ms, t.p95_ms, t.plans_per_s, t.mean_evaluations,
-              t.mean_families, t.unreachable, t.exhausted);
+              t.mean_families, t.no_solution, t.exhausted);
   std::fflush(stdout);
 }
 
@@ -285,7 +285,7 @@ int main(int argc, char** argv) {
   for (int budget : {base.max_evaluations, tight_evaluations}) {
     std::printf("\nevery pairing, max_evaluations %d\n\n"
                 "| global | local | success | shipped | generated | median | p95 | plans/s | "
-                "mean evaluations | mean families (solved) | unreachable | budget exhausted |\n"
+                "mean evaluations | mean families (solved) | no solution found | budget exhausted |\n"
                 "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", budget);
     for (auto g : globals)
       for (auto l : locals) {
