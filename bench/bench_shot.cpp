@@ -54,6 +54,20 @@ std::vector<Shot> jittered(const Shot& base) {
   return shots;
 }
 
+// Times simulate() over `shots` in turn from (0.8, 0.5); `scene` is a Scene or a
+// CompiledScene.
+template <class SceneForm>
+void time_shots(benchmark::State& state, const SceneForm& scene, const std::vector<Shot>& shots,
+                const SimulationOptions& o) {
+  size_t i = 0;
+  for (auto _ : state) {
+    const ShotResult r = simulate(scene, {0.8, 0.5}, shots[i], o);
+    benchmark::DoNotOptimize(r.final_position);
+    if (++i == shots.size()) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 void BM_Shot(benchmark::State& state, int which, bool obstacles, bool use_table) {
   const Case& c = kCases[which];
   const CompiledScene s(scene(obstacles));
@@ -67,13 +81,7 @@ void BM_Shot(benchmark::State& state, int which, bool obstacles, bool use_table)
   const std::vector<Shot> shots = jittered(c.base);
   double cushions = 0.0;
   for (const Shot& shot : shots) cushions += simulate(s, {0.8, 0.5}, shot, o).cushion_hits;
-  size_t i = 0;
-  for (auto _ : state) {
-    const ShotResult r = simulate(s, {0.8, 0.5}, shots[i], o);
-    benchmark::DoNotOptimize(r.final_position);
-    if (++i == shots.size()) i = 0;
-  }
-  state.SetItemsProcessed(state.iterations());
+  time_shots(state, s, shots, o);
   // The route the case is named after, on average over its shots (obstacles may
   // stop some early).
   state.counters["mean_cushions"] = cushions / static_cast<double>(shots.size());
@@ -81,17 +89,9 @@ void BM_Shot(benchmark::State& state, int which, bool obstacles, bool use_table)
 
 // The same shots through simulate(const Scene&), which checks the scene on every call.
 void BM_ShotCheckingTheScene(benchmark::State& state, int which, bool obstacles) {
-  const Scene s = scene(obstacles);
   SimulationOptions o;
   o.record_path = false;
-  const std::vector<Shot> shots = jittered(kCases[which].base);
-  size_t i = 0;
-  for (auto _ : state) {
-    const ShotResult r = simulate(s, {0.8, 0.5}, shots[i], o);
-    benchmark::DoNotOptimize(r.final_position);
-    if (++i == shots.size()) i = 0;
-  }
-  state.SetItemsProcessed(state.iterations());
+  time_shots(state, scene(obstacles), jittered(kCases[which].base), o);
 }
 
 void register_all() {

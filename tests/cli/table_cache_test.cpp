@@ -1,6 +1,8 @@
 // The command line's cache of impact tables: where it lives, and reuse of its files.
 #include "table_cache.hpp"
 
+#include "support/physics_checks.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -13,16 +15,6 @@
 namespace cueplan::cli {
 namespace {
 
-physics::ImpactTableOptions tiny_options() {
-  physics::ImpactTableOptions o;
-  o.alpha_nodes = 5;
-  o.topspin_nodes = 9;
-  o.sidespin_nodes = 5;
-  o.roll_alpha_nodes = 5;
-  o.roll_sidespin_nodes = 5;
-  o.cell_tolerance = 1e-2;
-  return o;
-}
 
 TEST(TableCache, LoadOrBuildCachesAndRebuildsADamagedFile) {
   std::random_device random;
@@ -30,7 +22,7 @@ TEST(TableCache, LoadOrBuildCachesAndRebuildsADamagedFile) {
       std::filesystem::temp_directory_path() / ("cueplan_table_cache_test_" + std::to_string(random()));
   const std::string cache = (dir / "cache").string();
   const physics::CushionParams params;
-  const physics::ImpactTableOptions o = tiny_options();
+  const physics::ImpactTableOptions o = physics::test::tiny_table_options();
   std::string note;
   const physics::ImpactTable built = load_or_build_table(params, o, cache, &note);
   EXPECT_EQ(note.rfind("built impact table, saved to ", 0), 0u) << note;

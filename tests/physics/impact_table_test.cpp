@@ -23,6 +23,8 @@
 #include <thread>
 #include <vector>
 
+#include "support/physics_checks.hpp"
+
 namespace cueplan::physics {
 namespace {
 
@@ -38,17 +40,7 @@ ImpactTableOptions suite_options() {
   return o;
 }
 
-// A tiny table for the cache tests, which build several.
-ImpactTableOptions tiny_options() {
-  ImpactTableOptions o;
-  o.alpha_nodes = 5;
-  o.topspin_nodes = 9;
-  o.sidespin_nodes = 5;
-  o.roll_alpha_nodes = 5;
-  o.roll_sidespin_nodes = 5;
-  o.cell_tolerance = 1e-2;
-  return o;
-}
+ImpactTableOptions tiny_options() { return test::tiny_table_options(); }
 
 // Measured bounds may be exceeded slightly between test points; this is the
 // allowance, relative to the bound.

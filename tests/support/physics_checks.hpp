@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cueplan/physics/cushion_impact.hpp"
+#include "cueplan/physics/impact_table.hpp"
 #include "cueplan/physics/shot.hpp"
 
 namespace cueplan::physics::test {
@@ -23,6 +24,19 @@ inline double state_difference(const CushionParams& p, const ImpactResult& a, co
   const double m = std::max({std::abs(dv.x), std::abs(dv.y), p.radius * std::abs(dw.x),
                              p.radius * std::abs(dw.y), p.radius * std::abs(dw.z)});
   return m / v0;
+}
+
+// A tiny impact table that builds in a fraction of a second, for tests that build several
+// (saving, loading, caching); too coarse for accuracy.
+inline ImpactTableOptions tiny_table_options() {
+  ImpactTableOptions o;
+  o.alpha_nodes = 5;
+  o.topspin_nodes = 9;
+  o.sidespin_nodes = 5;
+  o.roll_alpha_nodes = 5;
+  o.roll_sidespin_nodes = 5;
+  o.cell_tolerance = 1e-2;
+  return o;
 }
 
 // Every number an impact result reports is finite.
