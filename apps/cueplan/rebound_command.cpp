@@ -78,7 +78,9 @@ void write_text(std::ostream& out, const phys::CushionParams& params, const Inci
     line("message", r.message);
 }
 
-void write_json(std::ostream& out, const phys::CushionParams& params, const Incidence& in,
+}  // namespace
+
+nlohmann::ordered_json rebound_json(const phys::CushionParams& params, const Incidence& in,
                 const phys::ImpactOptions& options, const phys::ImpactResult& r) {
   using nlohmann::ordered_json;
   const double spin_unit = in.speed / params.radius;
@@ -140,8 +142,10 @@ void write_json(std::ostream& out, const phys::CushionParams& params, const Inci
                 {"mass", "kg"},
                 {"radius", "m"},
                 {"cushion_height", "m"}};
-  out << j.dump(2) << '\n';
+  return j;
 }
+
+namespace {
 
 }  // namespace
 
@@ -385,7 +389,7 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
   if (result.status == phys::ImpactStatus::invalid_input)
     return usage(result.error ? message_in(*result.error, kCushionFlags) : result.message);
   if (args_.json)
-    write_json(out, params, in, options, result);
+    out << rebound_json(params, in, options, result).dump(2) << '\n';
   else
     write_text(out, params, in, result);
   return phys::usable(result.status) ? kExitOk : kExitFailed;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cueplan/physics/cushion_impact.hpp"
@@ -74,5 +75,10 @@ class ReboundCommand {
   CLI::App* command_ = nullptr;
   ReboundArgs args_;
 };
+
+// What `cueplan rebound --json` prints for one impact.
+nlohmann::ordered_json rebound_json(const physics::CushionParams& params, const Incidence& in,
+                                    const physics::ImpactOptions& options,
+                                    const physics::ImpactResult& r);
 
 }  // namespace cueplan::cli

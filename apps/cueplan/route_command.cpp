@@ -97,7 +97,9 @@ void write_text(std::ostream& out, const prob::Problem& problem, const plan::Rou
 // ---------------------------------------------------------------------------
 // JSON
 
-void write_json(std::ostream& out, const prob::Problem& problem, const plan::RouteOptions& o,
+}  // namespace
+
+nlohmann::ordered_json route_json(const prob::Problem& problem, const plan::RouteOptions& o,
                 const plan::RouteResult& r, const std::string& svg_file) {
   ordered_json j;
   j["problem"] = {{"name", problem.name}, {"source", problem.source}};
@@ -150,8 +152,10 @@ void write_json(std::ostream& out, const prob::Problem& problem, const plan::Rou
                 {"aim_deg", "deg from +x, counter-clockwise"},
                 {"success_probability", "fraction of noisy strokes, 0..1"},
                 {"time_s", "s"}};
-  out << j.dump(2) << '\n';
+  return j;
 }
+
+namespace {
 
 // ---------------------------------------------------------------------------
 // SVG: every stroke's path in order.
@@ -322,7 +326,7 @@ int RouteCommand::run(std::ostream& out, std::ostream& err) const {
       return usage("--svg: " + why);
   }
   if (args_.json)
-    write_json(out, problem, o, result, args_.svg_file);
+    out << route_json(problem, o, result, args_.svg_file).dump(2) << '\n';
   else
     write_text(out, problem, o, result, args_.svg_file);
   if (!out) return kExitFailed;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cueplan/planner/route.hpp"
@@ -57,5 +58,10 @@ class RouteCommand {
   CLI::App* command_ = nullptr;
   RouteArgs args_;
 };
+
+// What `cueplan route --json` prints for a route (svg_file: the drawing written, or empty).
+nlohmann::ordered_json route_json(const problems::Problem& problem,
+                                  const planner::RouteOptions& o, const planner::RouteResult& r,
+                                  const std::string& svg_file);
 
 }  // namespace cueplan::cli

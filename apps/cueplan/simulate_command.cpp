@@ -164,7 +164,9 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
 
 nlohmann::ordered_json vec(phys::Vec2 v) { return {v.x, v.y}; }
 
-void write_json(std::ostream& out, const prob::Problem& problem, const phys::Shot& shot,
+}  // namespace
+
+nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::Shot& shot,
                 const phys::SimulationOptions& options, const phys::ShotResult& r,
                 const std::string& svg_file) {
   using nlohmann::ordered_json;
@@ -247,8 +249,10 @@ void write_json(std::ostream& out, const prob::Problem& problem, const phys::Sho
                 {"tolerance", "m"},
                 {"miss_distance", "m"},
                 {"impact_accuracy", "relative to the speed"}};
-  out << j.dump(2) << '\n';
+  return j;
 }
+
+namespace {
 
 // The title and caption of the drawing: the shot, then what came of it.
 TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
@@ -501,7 +505,7 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
       return usage("--svg: " + why);
   }
   if (args_.json)
-    write_json(out, problem, shot, options, result, args_.svg_file);
+    out << simulate_json(problem, shot, options, result, args_.svg_file).dump(2) << '\n';
   else
     write_text(out, problem, shot, options, result, args_.svg_file);
   const bool outcome = result.status == phys::ShotStatus::rest ||

@@ -5,9 +5,11 @@
 
 #include <cmath>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/problems/problem.hpp"
 #include "impact_setup.hpp"
 
 namespace CLI {
@@ -78,5 +80,11 @@ class SimulateCommand {
   CLI::App* command_ = nullptr;
   SimulateArgs args_;
 };
+
+// What `cueplan simulate --json` prints for one stroke (svg_file: the drawing written, or
+// empty).
+nlohmann::ordered_json simulate_json(const problems::Problem& problem, const physics::Shot& shot,
+                                     const physics::SimulationOptions& options,
+                                     const physics::ShotResult& r, const std::string& svg_file);
 
 }  // namespace cueplan::cli

@@ -134,7 +134,9 @@ void write_text(std::ostream& out, const prob::Problem& problem,
 // ---------------------------------------------------------------------------
 // JSON
 
-void write_json(std::ostream& out, const prob::Problem& problem,
+}  // namespace
+
+nlohmann::ordered_json solve_json(const prob::Problem& problem,
                 const plan::PlannerOptions& options, const plan::PlanResult& r,
                 const std::string& svg_file) {
   ordered_json j;
@@ -186,8 +188,10 @@ void write_json(std::ostream& out, const prob::Problem& problem,
                 {"time_s", "s"},
                 {"max_cushion_normal_speed", "m/s"},
                 {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"}};
-  out << j.dump(2) << '\n';
+  return j;
 }
+
+namespace {
 
 // ---------------------------------------------------------------------------
 // SVG: the best path in full, the alternatives faint.
@@ -351,7 +355,7 @@ int SolveCommand::run(std::ostream& out, std::ostream& err) const {
       return usage("--svg: " + why);
   }
   if (args_.json)
-    write_json(out, problem, options, result, args_.svg_file);
+    out << solve_json(problem, options, result, args_.svg_file).dump(2) << '\n';
   else
     write_text(out, problem, options, result, args_.svg_file);
   if (!out) return kExitFailed;

@@ -4,8 +4,11 @@
 #pragma once
 
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/problems/problem.hpp"
 #include "impact_setup.hpp"
 #include "planner_flags.hpp"
 
@@ -52,5 +55,10 @@ class SolveCommand {
   CLI::App* command_ = nullptr;
   SolveArgs args_;
 };
+
+// What `cueplan solve --json` prints for a plan (svg_file: the drawing written, or empty).
+nlohmann::ordered_json solve_json(const problems::Problem& problem,
+                                  const planner::PlannerOptions& options,
+                                  const planner::PlanResult& r, const std::string& svg_file);
 
 }  // namespace cueplan::cli
