@@ -13,16 +13,21 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 bool positive_finite(double x) { return std::isfinite(x) && x > 0.0; }
 bool non_negative_finite(double x) { return std::isfinite(x) && x >= 0.0; }
 
-// Finite velocity and spin, on the cloth (no vertical velocity).
-Validation validate_state(const BallState& s, const FieldPath& ball) {
-  const FieldPath v = ball / "velocity", w = ball / "spin";
-  if (!std::isfinite(s.velocity.x)) return invalid(v / "x", "must be finite (m/s)", s.velocity.x);
-  if (!std::isfinite(s.velocity.y)) return invalid(v / "y", "must be finite (m/s)", s.velocity.y);
-  if (!std::isfinite(s.spin.x)) return invalid(w / "x", "must be finite (rad/s)", s.spin.x);
-  if (!std::isfinite(s.spin.y)) return invalid(w / "y", "must be finite (rad/s)", s.spin.y);
-  if (!std::isfinite(s.spin.z)) return invalid(w / "z", "must be finite (rad/s)", s.spin.z);
+// Finite velocity and spin, on the cloth (no vertical velocity). The paths are built only
+// for an error: this runs on every collision.
+Validation validate_state(const BallState& s, const char* ball) {
+  auto field = [&](const char* vector, const char* component) {
+    return FieldPath{ball, vector, component};
+  };
+  if (!std::isfinite(s.velocity.x))
+    return invalid(field("velocity", "x"), "must be finite (m/s)", s.velocity.x);
+  if (!std::isfinite(s.velocity.y))
+    return invalid(field("velocity", "y"), "must be finite (m/s)", s.velocity.y);
+  if (!std::isfinite(s.spin.x)) return invalid(field("spin", "x"), "must be finite (rad/s)", s.spin.x);
+  if (!std::isfinite(s.spin.y)) return invalid(field("spin", "y"), "must be finite (rad/s)", s.spin.y);
+  if (!std::isfinite(s.spin.z)) return invalid(field("spin", "z"), "must be finite (rad/s)", s.spin.z);
   if (s.velocity.z != 0.0)
-    return invalid(v / "z", "must be 0: the ball stays on the cloth", s.velocity.z);
+    return invalid(field("velocity", "z"), "must be 0: the ball stays on the cloth", s.velocity.z);
   return std::nullopt;
 }
 
@@ -222,11 +227,15 @@ Validation BallBallParams::validate() const {
     return invalid({"friction"}, "must be constant or speed_dependent",
                    static_cast<double>(friction));
   // A cloth slip passes through zero only while 7/2 mu_s mu_b < 1 (ball_collision_model.hpp).
-  if (model == BallModel::mathavan_2014 && !(3.5 * mu_ball * mu_table < 1.0))
-    return invalid({"mu_ball"},
-                   "times mu_table must be below 2/7 for mathavan_2014: a larger friction could "
-                   "hold a ball's slip on the cloth at zero, which the model does not describe",
-                   mu_ball);
+  if (model == BallModel::mathavan_2014 && !(3.5 * mu_ball * mu_table < 1.0)) {
+    ValidationError why = invalid({"mu_ball"},
+                                  "times {other} must be below 2/7 for mathavan_2014: a larger "
+                                  "friction could hold a ball's slip on the cloth at zero, which "
+                                  "the model does not describe",
+                                  mu_ball);
+    why.other = FieldPath{"mu_table"};
+    return why;
+  }
   return std::nullopt;
 }
 
@@ -248,8 +257,8 @@ CollisionResult resolve_collision(const BallBallParams& params, const BallState&
   if (Validation why = params.validate()) return invalid_result(params, *why);
   if (params.model == BallModel::mathavan_2014)
     if (Validation why = options.validate()) return invalid_result(params, *why);
-  if (Validation why = validate_state(ball_i, {"ball_i"})) return invalid_result(params, *why);
-  if (Validation why = validate_state(ball_j, {"ball_j"})) return invalid_result(params, *why);
+  if (Validation why = validate_state(ball_i, "ball_i")) return invalid_result(params, *why);
+  if (Validation why = validate_state(ball_j, "ball_j")) return invalid_result(params, *why);
   if (!(ball_i.velocity.y > ball_j.velocity.y)) {
     ValidationError why = invalid({"ball_i", "velocity", "y"},
                                   "must exceed {other}: the balls must approach along the line "
@@ -295,8 +304,8 @@ CollisionResult resolve_table_collision(const BallBallParams& params, Vec3 centr
     return invalid_result(params, std::move(why));
   }
   if (Validation why = params.validate()) return invalid_result(params, *why);
-  if (Validation why = validate_state(ball_i, {"ball_i"})) return invalid_result(params, *why);
-  if (Validation why = validate_state(ball_j, {"ball_j"})) return invalid_result(params, *why);
+  if (Validation why = validate_state(ball_i, "ball_i")) return invalid_result(params, *why);
+  if (Validation why = validate_state(ball_j, "ball_j")) return invalid_result(params, *why);
   const Frame frame{{dy / distance, -dx / distance, 0.0}, {dx / distance, dy / distance, 0.0}};
   const BallState in_i = frame.to_frame(ball_i), in_j = frame.to_frame(ball_j);
   if (!(in_i.velocity.y > in_j.velocity.y)) {
