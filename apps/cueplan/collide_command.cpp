@@ -210,35 +210,16 @@ CollideCommand::CollideCommand(CLI::App& parent) {
                "--batch is given.")
       ->type_name("deg")
       ->group(ball);
-  auto* topspin_k = c.add_option("--topspin-k", args_.topspin_k,
-                                 "Topspin k_T = w_T R / V about the horizontal axis across the "
-                                 "motion (1: natural roll, 0: stun, < 0: draw)")
-                        ->type_name("k_T")
-                        ->capture_default_str()
-                        ->group(ball);
-  auto* sidespin_k =
-      c.add_option("--sidespin-k", args_.sidespin_k, "Sidespin k_S = w_S R / V (> 0: right spin)")
-          ->type_name("k_S")
-          ->capture_default_str()
-          ->group(ball);
-  auto* topspin = c.add_option("--topspin", args_.topspin,
-                               "Topspin w_T (rad/s) instead of --topspin-k; V/R is natural roll")
-                      ->type_name("rad/s")
-                      ->excludes(topspin_k)
-                      ->group(ball);
-  auto* sidespin = c.add_option("--sidespin", args_.sidespin,
-                                "Sidespin w_S (rad/s) instead of --sidespin-k; > 0 is right spin")
-                       ->type_name("rad/s")
-                       ->excludes(sidespin_k)
-                       ->group(ball);
+  const SpinFlags spin_flags = add_spin_flags(c, &args_.spins, ball, "V",
+                                              " about the horizontal axis across the motion");
   c.add_option("--spin", args_.spin,
                "Any spin vector (rad/s, table frame: x along the motion, y to its left, z up) "
                "instead of the topspin and sidespin flags, as a ball has after a cushion")
       ->type_name("WX,WY,WZ")
-      ->excludes(topspin_k)
-      ->excludes(sidespin_k)
-      ->excludes(topspin)
-      ->excludes(sidespin)
+      ->excludes(spin_flags.topspin_k)
+      ->excludes(spin_flags.sidespin_k)
+      ->excludes(spin_flags.topspin)
+      ->excludes(spin_flags.sidespin)
       ->group(ball);
 
   const char* model = "Model";
@@ -381,18 +362,12 @@ std::string CollideCommand::read_shot(const phys::BallBallParams& params, Inputs
     in.spin = *spin;
     return {};
   }
-  // Each spin comes in rad/s or as k = w R / V, whichever flag was given.
-  const double unit = args_.speed / params.radius;  // rad/s per unit of k
-  const bool topspin_rad = given("--topspin"), sidespin_rad = given("--sidespin");
-  const double topspin = topspin_rad ? args_.topspin : args_.topspin_k;
-  const double sidespin = sidespin_rad ? args_.sidespin : args_.sidespin_k;
-  if (!std::isfinite(topspin))
-    return fmt::format("{} must be finite, got {}", topspin_rad ? "--topspin" : "--topspin-k",
-                       topspin);
-  if (!std::isfinite(sidespin))
-    return fmt::format("{} must be finite, got {}", sidespin_rad ? "--sidespin" : "--sidespin-k",
-                       sidespin);
-  in.spin = {0.0, topspin_rad ? topspin : topspin * unit, sidespin_rad ? sidespin : sidespin * unit};
+  double topspin = 0.0, sidespin = 0.0;
+  if (std::string why =
+          read_spins(*command_, args_.spins, args_.speed, params.radius, &topspin, &sidespin);
+      !why.empty())
+    return why;
+  in.spin = {0.0, topspin, sidespin};
   return {};
 }
 

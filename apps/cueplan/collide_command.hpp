@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cueplan/physics/ball_collision.hpp"
+#include "spin_flags.hpp"
 
 namespace CLI {
 class App;
@@ -18,11 +19,8 @@ namespace cueplan::cli {
 struct CollideArgs {
   double speed = NAN;       // m/s, --speed
   double cut_deg = NAN;     // deg, --cut
-  double topspin_k = 1.0;   // --topspin-k, k_T = w_T R / V
-  double sidespin_k = 0.0;  // --sidespin-k, k_S = w_S R / V
-  double topspin = 0.0;     // rad/s, --topspin (replaces --topspin-k when given)
-  double sidespin = 0.0;    // rad/s, --sidespin (replaces --sidespin-k when given)
-  std::string spin;         // "WX,WY,WZ" rad/s, --spin (replaces both)
+  SpinArgs spins;    // --topspin-k, --sidespin-k, --topspin, --sidespin
+  std::string spin;  // "WX,WY,WZ" rad/s, --spin (replaces them)
   std::string model = "mathavan_2014";
   std::string ball_friction = "constant";
   std::string method = "exact";

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cueplan/physics/cushion_impact.hpp"
+#include "spin_flags.hpp"
 
 namespace CLI {
 class App;
@@ -18,10 +19,7 @@ namespace cueplan::cli {
 struct ReboundArgs {
   double speed = NAN;       // m/s, --speed
   double angle_deg = NAN;   // deg, --angle
-  double topspin_k = 1.0;   // --topspin-k, k_T = w_T R / V0
-  double sidespin_k = 0.0;  // --sidespin-k, k_S = w_S R / V0
-  double topspin = 0.0;     // rad/s, --topspin (replaces --topspin-k when given)
-  double sidespin = 0.0;    // rad/s, --sidespin (replaces --sidespin-k when given)
+  SpinArgs spin;            // --topspin-k, --sidespin-k, --topspin, --sidespin
   std::string method = "exact";
   int steps = 5000;          // paper scheme N
   double tolerance = 1e-12;  // exact method
