@@ -73,12 +73,7 @@ class CollisionIntegrator {
 
  private:
   enum class Target { none, compression_end, collision_end, gearing, cloth_zero };
-  struct Step {
-    State f0;  // f(t_, y_)
-    double size = 0.0;
-    Target target = Target::none;
-    State next;  // the state at t_ + size
-    StepReport report;
+  struct Step : PlannedStep<kDim, Target> {
     bool moving_b = false;  // the balls slipped at the step's start
     double gearing = INFINITY;    // predicted distance in t to the balls gearing
     double next_event = INFINITY;  // distance in t to the end of compression or of the collision

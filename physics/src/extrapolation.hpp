@@ -61,6 +61,18 @@ struct StepReport {
   double next_h = 0.0;  // suggested size of the next step (or of the retry)
 };
 
+// A step as an integrator plans and takes it: f at its start, its size, the event it is
+// cut to land on (`Target::none` when none), the state at its end and the extrapolation's
+// report. Each integrator adds what it learns about its own slips.
+template <size_t N, class Target>
+struct PlannedStep {
+  std::array<double, N> f0;  // f(t, y) at the step's start
+  double size = 0.0;
+  Target target = Target::none;
+  std::array<double, N> next;  // the state at the step's end
+  StepReport report;
+};
+
 // One extrapolated step of size h at a time, with the order and step-size control of
 // extrapolation codes (Hairer & Wanner's ODEX): columns are computed up to one past the
 // target column, a step is accepted at the first column whose error estimate (the

@@ -61,12 +61,7 @@ class ExactIntegrator {
  private:
   // What becomes of one step, from its plan to its events.
   enum class Target { none, compression_end, impact_end, slip_zero_i, slip_zero_c };
-  struct Step {
-    State f0;  // f(t_, y_)
-    double size = 0.0;
-    Target target = Target::none;
-    State next;  // the state at t_ + size
-    StepReport report;
+  struct Step : PlannedStep<kDim, Target> {
     bool moving_i = false, moving_c = false;  // slipping away from zero at its start
     bool broke = false;                       // a stick stopped holding inside it
   };
