@@ -46,7 +46,8 @@ std::vector<Sample> make_samples(bool rolling) {
     const double speed = v(rng), c = cut(rng);
     const double topspin_k = rolling ? 1.0 : k(rng), sidespin_k = rolling ? side(rng) : k(rng);
     const double unit = speed / params.radius;
-    Sample s{speed, cut_shot(speed, c, {0.0, topspin_k * unit, sidespin_k * unit}, params.radius), {}};
+    Sample s{
+        speed, cut_shot(speed, c, {0.0, topspin_k * unit, sidespin_k * unit}, params.radius), {}};
     s.reference = collide(params, s.shot, converged);
     out.push_back(s);
   }
@@ -67,7 +68,8 @@ const std::vector<Sample>& rolling_samples() {
 // over V.
 double state_error(const BallBallParams& p, const CollisionResult& r, const Sample& s) {
   double m = 0.0;
-  for (const auto& [a, b] : {std::pair{r.ball_i, s.reference.ball_i}, std::pair{r.ball_j, s.reference.ball_j}}) {
+  for (const auto& [a, b] :
+       {std::pair{r.ball_i, s.reference.ball_i}, std::pair{r.ball_j, s.reference.ball_j}}) {
     const Vec3 dv = a.velocity - b.velocity, dw = a.spin - b.spin;
     m = std::max({m, std::abs(dv.x), std::abs(dv.y), p.radius * std::abs(dw.x),
                   p.radius * std::abs(dw.y), p.radius * std::abs(dw.z)});

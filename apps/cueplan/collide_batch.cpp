@@ -63,8 +63,8 @@ BatchOutcome solve_row(const BatchRow& row, const phys::BallBallParams& params,
                        const phys::CollisionOptions& options) {
   const std::string where = fmt::format("line {}: ", row.line);
   if (row.fields.size() != kInputColumns)
-    return failed("parse_error",
-                  fmt::format("{}expected {} columns, got {}", where, kInputColumns, row.fields.size()));
+    return failed("parse_error", fmt::format("{}expected {} columns, got {}", where, kInputColumns,
+                                             row.fields.size()));
   constexpr const char* kNames[] = {"speed", "cut_deg", "topspin_k", "sidespin_k"};
   double value[kInputColumns];
   for (size_t c = 0; c < kInputColumns; ++c) {

@@ -68,7 +68,6 @@ std::string flag_message(const physics::ValidationError& error);
 // Resolves every row (from `threads` threads, 0: one per core) and writes the output
 // CSV, header included, to `out`.
 void write_collide_batch(const BatchInput& input, const physics::BallBallParams& params,
-                         const physics::CollisionOptions& options, int threads,
-                         std::ostream& out);
+                         const physics::CollisionOptions& options, int threads, std::ostream& out);
 
 }  // namespace cueplan::cli

@@ -1,8 +1,8 @@
 #include "collide_command.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
@@ -42,9 +42,11 @@ const char* event_key(phys::CollisionEvent event) {
 
 const char* event_words(phys::CollisionEvent event) {
   switch (event) {
-    case phys::CollisionEvent::balls_geared: return "the balls gear (no slip between them from here)";
+    case phys::CollisionEvent::balls_geared:
+      return "the balls gear (no slip between them from here)";
     case phys::CollisionEvent::cloth_i_through_zero: return "the cue ball's cloth slip passes zero";
-    case phys::CollisionEvent::cloth_j_through_zero: return "the object ball's cloth slip passes zero";
+    case phys::CollisionEvent::cloth_j_through_zero:
+      return "the object ball's cloth slip passes zero";
   }
   return "?";
 }
@@ -66,23 +68,22 @@ void write_text(std::ostream& out, const phys::BallBallParams& params, const Cut
   };
   const phys::CollisionResult& r = o.result;
   const double spin_unit = in.speed / params.radius;  // rad/s per unit of k
-  line("incoming",
-       fmt::format("V = {} along +x, cut {} ({}), spin wx = {}, wy = {}, wz = {} "
-                   "(k_T = {}, k_S = {})",
-                   number(in.speed, "m/s"), number(in.cut_deg, "deg"),
-                   in.cut_deg > 0.0   ? "to the right"
-                   : in.cut_deg < 0.0 ? "to the left"
-                                      : "full ball",
-                   number(in.spin.x), number(in.spin.y), number(in.spin.z, "rad/s"),
-                   number(in.spin.y / spin_unit), number(in.spin.z / spin_unit)));
+  line("incoming", fmt::format("V = {} along +x, cut {} ({}), spin wx = {}, wy = {}, wz = {} "
+                               "(k_T = {}, k_S = {})",
+                               number(in.speed, "m/s"), number(in.cut_deg, "deg"),
+                               in.cut_deg > 0.0   ? "to the right"
+                               : in.cut_deg < 0.0 ? "to the left"
+                                                  : "full ball",
+                               number(in.spin.x), number(in.spin.y), number(in.spin.z, "rad/s"),
+                               number(in.spin.y / spin_unit), number(in.spin.z / spin_unit)));
   const auto ball = [&](std::string_view name, const BallReport& b) {
     line(name, fmt::format("velocity vx = {}, vy = {}; spin wx = {}, wy = {}, wz = {}",
                            number(b.velocity.x, "m/s"), number(b.velocity.y, "m/s"),
                            number(b.spin.x), number(b.spin.y), number(b.spin.z, "rad/s")));
-    line("  rolls at", fmt::format("{} at {} from +x (vx = {}, vy = {})",
-                                   number(b.rolling_speed, "m/s"),
-                                   number(b.rolling_angle_deg, "deg"), number(b.rolling.x, "m/s"),
-                                   number(b.rolling.y, "m/s")));
+    line("  rolls at",
+         fmt::format("{} at {} from +x (vx = {}, vy = {})", number(b.rolling_speed, "m/s"),
+                     number(b.rolling_angle_deg, "deg"), number(b.rolling.x, "m/s"),
+                     number(b.rolling.y, "m/s")));
   };
   ball("cue ball", o.cue);
   ball("object ball", o.object);
@@ -166,8 +167,9 @@ void write_json(std::ostream& out, const phys::BallBallParams& params,
                 {"rolling_velocity", "m/s, once the ball rolls again on the cloth"},
                 {"rolling_speed", "m/s"},
                 {"rolling_angle_deg", "deg from +x"},
-                {"throw_deg", "deg, the object ball's direction against the line of centres, "
-                              "counter-clockwise"},
+                {"throw_deg",
+                 "deg, the object ball's direction against the line of centres, "
+                 "counter-clockwise"},
                 {"impulse", "N s"},
                 {"work", "J"},
                 {"speed", "m/s"},
@@ -210,8 +212,8 @@ CollideCommand::CollideCommand(CLI::App& parent) {
                "--batch is given.")
       ->type_name("deg")
       ->group(ball);
-  const SpinFlags spin_flags = add_spin_flags(c, &args_.spins, ball, "V",
-                                              " about the horizontal axis across the motion");
+  const SpinFlags spin_flags =
+      add_spin_flags(c, &args_.spins, ball, "V", " about the horizontal axis across the motion");
   c.add_option("--spin", args_.spin,
                "Any spin vector (rad/s, table frame: x along the motion, y to its left, z up) "
                "instead of the topspin and sidespin flags, as a ball has after a cushion")
@@ -325,7 +327,8 @@ std::string CollideCommand::read_options(phys::CollisionOptions* options) const 
   // Both the paper's and the exact method's settings are checked whatever the method, so
   // that a bad value is not silently ignored.
   phys::CollisionOptions each = *options;
-  for (phys::CollisionMethod method : {phys::CollisionMethod::paper, phys::CollisionMethod::exact}) {
+  for (phys::CollisionMethod method :
+       {phys::CollisionMethod::paper, phys::CollisionMethod::exact}) {
     each.method = method;
     if (phys::Validation why = each.validate()) return flag_message(*why);
   }
@@ -349,8 +352,7 @@ std::string CollideCommand::read_params(phys::BallBallParams* params) const {
 std::string CollideCommand::read_shot(const phys::BallBallParams& params, Inputs* inputs) const {
   if (!given("--speed")) return "--speed is required (m/s) unless --batch is given";
   if (!given("--cut")) return "--cut is required (deg) unless --batch is given";
-  if (std::string why = check_cut(args_.speed, args_.cut_deg, kFlagNames); !why.empty())
-    return why;
+  if (std::string why = check_cut(args_.speed, args_.cut_deg, kFlagNames); !why.empty()) return why;
   CutShotInput& in = inputs->shot;
   in.speed = args_.speed;
   in.cut_deg = args_.cut_deg;

@@ -17,10 +17,10 @@ namespace cueplan::cli {
 
 // What the command line asked for, in the flags' units.
 struct CollideArgs {
-  double speed = NAN;       // m/s, --speed
-  double cut_deg = NAN;     // deg, --cut
-  SpinArgs spins;    // --topspin-k, --sidespin-k, --topspin, --sidespin
-  std::string spin;  // "WX,WY,WZ" rad/s, --spin (replaces them)
+  double speed = NAN;    // m/s, --speed
+  double cut_deg = NAN;  // deg, --cut
+  SpinArgs spins;        // --topspin-k, --sidespin-k, --topspin, --sidespin
+  std::string spin;      // "WX,WY,WZ" rad/s, --spin (replaces them)
   std::string model = "mathavan_2014";
   std::string ball_friction = "constant";
   std::string method = "exact";

@@ -1,8 +1,8 @@
 #include "spin_flags.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 
 namespace cueplan::cli {
@@ -17,12 +17,11 @@ SpinFlags add_spin_flags(CLI::App& c, SpinArgs* args, const char* group, const c
                     ->type_name("k_T")
                     ->capture_default_str()
                     ->group(group);
-  f.sidespin_k =
-      c.add_option("--sidespin-k", args->sidespin_k,
-                   fmt::format("Sidespin k_S = w_S R / {} (> 0: right spin)", speed))
-          ->type_name("k_S")
-          ->capture_default_str()
-          ->group(group);
+  f.sidespin_k = c.add_option("--sidespin-k", args->sidespin_k,
+                              fmt::format("Sidespin k_S = w_S R / {} (> 0: right spin)", speed))
+                     ->type_name("k_S")
+                     ->capture_default_str()
+                     ->group(group);
   f.topspin = c.add_option("--topspin", args->topspin,
                            fmt::format("Topspin w_T (rad/s) instead of --topspin-k; {}/R is "
                                        "natural roll",
@@ -38,8 +37,8 @@ SpinFlags add_spin_flags(CLI::App& c, SpinArgs* args, const char* group, const c
   return f;
 }
 
-std::string read_spins(const CLI::App& command, const SpinArgs& args, double speed,
-                       double radius, double* topspin, double* sidespin) {
+std::string read_spins(const CLI::App& command, const SpinArgs& args, double speed, double radius,
+                       double* topspin, double* sidespin) {
   // Each spin comes in rad/s or as k = w R / V, whichever flag was given.
   const bool topspin_rad = command.count("--topspin") > 0;
   const bool sidespin_rad = command.count("--sidespin") > 0;

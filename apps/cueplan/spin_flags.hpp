@@ -36,7 +36,7 @@ SpinFlags add_spin_flags(CLI::App& command, SpinArgs* args, const char* group, c
 // Topspin w_T and sidespin w_S (rad/s) for a ball struck at `speed` (m/s) with radius
 // `radius` (m), from whichever flag of each pair was given. Empty, or one line naming the
 // flag whose value is not finite.
-std::string read_spins(const CLI::App& command, const SpinArgs& args, double speed,
-                       double radius, double* topspin, double* sidespin);
+std::string read_spins(const CLI::App& command, const SpinArgs& args, double speed, double radius,
+                       double* topspin, double* sidespin);
 
 }  // namespace cueplan::cli

@@ -23,9 +23,12 @@ Validation validate_state(const BallState& s, const char* ball) {
     return invalid(field("velocity", "x"), "must be finite (m/s)", s.velocity.x);
   if (!std::isfinite(s.velocity.y))
     return invalid(field("velocity", "y"), "must be finite (m/s)", s.velocity.y);
-  if (!std::isfinite(s.spin.x)) return invalid(field("spin", "x"), "must be finite (rad/s)", s.spin.x);
-  if (!std::isfinite(s.spin.y)) return invalid(field("spin", "y"), "must be finite (rad/s)", s.spin.y);
-  if (!std::isfinite(s.spin.z)) return invalid(field("spin", "z"), "must be finite (rad/s)", s.spin.z);
+  if (!std::isfinite(s.spin.x))
+    return invalid(field("spin", "x"), "must be finite (rad/s)", s.spin.x);
+  if (!std::isfinite(s.spin.y))
+    return invalid(field("spin", "y"), "must be finite (rad/s)", s.spin.y);
+  if (!std::isfinite(s.spin.z))
+    return invalid(field("spin", "z"), "must be finite (rad/s)", s.spin.z);
   if (s.velocity.z != 0.0)
     return invalid(field("velocity", "z"), "must be 0: the ball stays on the cloth", s.velocity.z);
   return std::nullopt;
@@ -74,8 +77,8 @@ CollisionResult closed_form(const BallBallParams& p, const BallState& i, const B
   const double slip = std::hypot(bt, bz);
   double ft = 0.0, fz = 0.0;
   if (slip > 0.0) {
-    const double mu = p.friction == BallFriction::speed_dependent ? speed_dependent_friction(slip)
-                                                                  : p.mu_ball;
+    const double mu =
+        p.friction == BallFriction::speed_dependent ? speed_dependent_friction(slip) : p.mu_ball;
     const double magnitude = std::min(mu * normal, m * slip / 7.0);
     ft = -magnitude * bt / slip;
     fz = -magnitude * bz / slip;
@@ -290,11 +293,13 @@ CollisionResult resolve_collision(const BallBallParams& params, const BallState&
 
 CollisionResult resolve_table_collision(const BallBallParams& params, Vec3 centre_i,
                                         const BallState& ball_i, Vec3 centre_j,
-                                        const BallState& ball_j,
-                                        const CollisionOptions& options) {
-  for (const auto& [centre, name] : {std::pair{centre_i, "centre_i"}, std::pair{centre_j, "centre_j"}}) {
-    if (!std::isfinite(centre.x)) return invalid_result(params, invalid({name, "x"}, "must be finite (m)", centre.x));
-    if (!std::isfinite(centre.y)) return invalid_result(params, invalid({name, "y"}, "must be finite (m)", centre.y));
+                                        const BallState& ball_j, const CollisionOptions& options) {
+  for (const auto& [centre, name] :
+       {std::pair{centre_i, "centre_i"}, std::pair{centre_j, "centre_j"}}) {
+    if (!std::isfinite(centre.x))
+      return invalid_result(params, invalid({name, "x"}, "must be finite (m)", centre.x));
+    if (!std::isfinite(centre.y))
+      return invalid_result(params, invalid({name, "y"}, "must be finite (m)", centre.y));
   }
   const double dx = centre_j.x - centre_i.x, dy = centre_j.y - centre_i.y;
   const double distance = std::hypot(dx, dy);

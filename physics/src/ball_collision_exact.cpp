@@ -74,10 +74,10 @@ class CollisionIntegrator {
  private:
   enum class Target { none, compression_end, collision_end, gearing, cloth_zero };
   struct Step : PlannedStep<kDim, Target> {
-    bool moving_b = false;  // the balls slipped at the step's start
-    double gearing = INFINITY;    // predicted distance in t to the balls gearing
+    bool moving_b = false;         // the balls slipped at the step's start
+    double gearing = INFINITY;     // predicted distance in t to the balls gearing
     double next_event = INFINITY;  // distance in t to the end of compression or of the collision
-    bool moving_c = false;  // the pressed ball's cloth slip was away from zero
+    bool moving_c = false;         // the pressed ball's cloth slip was away from zero
   };
 
   // The stages of run(), in order.
@@ -164,8 +164,8 @@ class CollisionIntegrator {
 
   double t_ = 0.0;
   State y_{};
-  bool geared_ = false;                     // b reached zero: no friction from here on
-  PlanarSlip seed_b_{1.0, 0.0};             // b's last direction, for where it has none
+  bool geared_ = false;          // b reached zero: no friction from here on
+  PlanarSlip seed_b_{1.0, 0.0};  // b's last direction, for where it has none
   int steps_ = 0;
   // Fraction of the predicted distance to a slip zero that a landing step covers: 1
   // until a landing step fails to converge there, then 0.9 (see extrapolation.hpp).
@@ -306,9 +306,9 @@ void CollisionIntegrator::resolve_events(const Step& s) {
   const Pressed k = pressed();
   if (s.moving_c && k != Pressed::none && slip_c(k, t_, y_).magnitude() <= events_.zero_slip) {
     approach_ = 1.0;
-    out_->add_transition(
-        k == Pressed::i ? CollisionEvent::cloth_i_through_zero : CollisionEvent::cloth_j_through_zero,
-        y_[kP]);
+    out_->add_transition(k == Pressed::i ? CollisionEvent::cloth_i_through_zero
+                                         : CollisionEvent::cloth_j_through_zero,
+                         y_[kP]);
   }
   // The balls geared: a slip landed within the zero threshold is closed (its error is
   // far below the tolerance) unless that would move the end of compression.
@@ -360,8 +360,8 @@ bool CollisionIntegrator::close_gearing(double max_error) {
     const ScaledBall& rk = k == Pressed::i ? r.i : r.j;
     const PlanarSlip dc = {rk.ut - rk.on, rk.un + rk.ot};
     const double dp = b.magnitude() / -db;
-    const double error = 0.5 * c_.mu_s * std::abs(jz) * dp *
-                         (1.0 + dc.magnitude() / slip_c(k, t_, y_).magnitude());
+    const double error =
+        0.5 * c_.mu_s * std::abs(jz) * dp * (1.0 + dc.magnitude() / slip_c(k, t_, y_).magnitude());
     if (!(db < 0.0) || !(error <= max_error)) return false;
   }
   const double t = t_ - (gin - gjn);  // t = -a, a = u_in - u_jn

@@ -27,8 +27,8 @@
 namespace cueplan::physics::detail {
 
 struct ScaledBall {
-  double ut = 0.0, un = 0.0;             // velocity
-  double ot = 0.0, on = 0.0, oz = 0.0;   // spin
+  double ut = 0.0, un = 0.0;            // velocity
+  double ot = 0.0, on = 0.0, oz = 0.0;  // spin
 };
 
 // A collision posed in scaled units.
@@ -83,8 +83,7 @@ inline PairFriction friction_for(const ScaledCollision& c, double dx, double dz,
       f.gjt = -c.mu_s * normal * dc.x;
       f.gjn = -c.mu_s * normal * dc.y;
       break;
-    case Pressed::none:
-      break;
+    case Pressed::none: break;
   }
   return f;
 }

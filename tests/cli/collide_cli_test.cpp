@@ -31,8 +31,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 phys::CollisionResult library_cut(const phys::BallBallParams& p, double speed, double cut_deg,
                                   phys::Vec3 spin, const phys::CollisionOptions& options = {}) {
   const phys::CutShot s = phys::cut_shot(speed, cut_deg, spin, p.radius);
-  return phys::resolve_table_collision(p, s.cue_centre, s.cue_ball, s.object_centre,
-                                       s.object_ball, options);
+  return phys::resolve_table_collision(p, s.cue_centre, s.cue_ball, s.object_centre, s.object_ball,
+                                       options);
 }
 
 void expect_ball(const json& j, const phys::BallState& expected, double radius, double tol,
@@ -60,15 +60,16 @@ TEST(Collide, SpelledOutCommandPrintsBothBallsWithUnits) {
   const ProcessResult run = cueplan("collide --speed 1 --cut 30 --topspin-k 1");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err, "");
-  for (const char* needle : {"incoming", "cue ball", "object ball", "rolls at", "throw", "status",
-                             "ok", "mathavan_2014, exact", "m/s", "rad/s", "deg from +x", "N s",
-                             " J", "transitions", "frame"})
+  for (const char* needle :
+       {"incoming", "cue ball", "object ball", "rolls at", "throw", "status", "ok",
+        "mathavan_2014, exact", "m/s", "rad/s", "deg from +x", "N s", " J", "transitions", "frame"})
     EXPECT_NE(run.out.find(needle), std::string::npos) << "missing '" << needle << "' in\n"
                                                        << run.out;
 }
 
 TEST(Collide, JsonEqualsTheLibraryResult) {
-  const ProcessResult run = cueplan("collide --speed 1.3 --cut -25 --topspin-k 0.5 --sidespin-k -0.7 --json");
+  const ProcessResult run =
+      cueplan("collide --speed 1.3 --cut -25 --topspin-k 0.5 --sidespin-k -0.7 --json");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json j = json::parse(run.out);
   const phys::BallBallParams p;
@@ -79,15 +80,17 @@ TEST(Collide, JsonEqualsTheLibraryResult) {
   expect_ball(j.at("cue_ball"), expected.ball_i, p.radius, 1e-12, "cue ball");
   expect_ball(j.at("object_ball"), expected.ball_j, p.radius, 1e-12, "object ball");
   const double line_of_centres = 25.0;  // deg: the object ball's centre at 2R (cos 25, sin 25)
-  EXPECT_NEAR(j.at("throw_deg").get<double>(),
-              std::atan2(expected.ball_j.velocity.y, expected.ball_j.velocity.x) / kDeg - line_of_centres,
-              1e-9);
+  EXPECT_NEAR(
+      j.at("throw_deg").get<double>(),
+      std::atan2(expected.ball_j.velocity.y, expected.ball_j.velocity.x) / kDeg - line_of_centres,
+      1e-9);
   EXPECT_NEAR(j.at("impulse_total").get<double>(), expected.impulse_total, 1e-14);
   EXPECT_EQ(j.at("rhs_evaluations").get<int>(), expected.rhs_evaluations);
   EXPECT_EQ(j.at("input").at("cut_deg"), -25.0);
   EXPECT_NEAR(j.at("input").at("sidespin_k").get<double>(), -0.7, 1e-12);
   EXPECT_EQ(j.at("units").at("rolling_angle_deg"), "deg from +x");
-  for (const char* key : {"cue_ball", "object_ball", "throw_deg", "model", "status", "input", "units"})
+  for (const char* key :
+       {"cue_ball", "object_ball", "throw_deg", "model", "status", "input", "units"})
     EXPECT_TRUE(j.contains(key)) << key;
 }
 
@@ -147,8 +150,8 @@ TEST(Collide, ThirtyDegreeRule) {
 // A full-ball stun shot without ball friction and with e = 1 stops the cue ball dead; the
 // object ball slides off at the cue ball's speed and rolls at 5/7 of it.
 TEST(Collide, FullBallStunShotStopsTheCueBall) {
-  const ProcessResult run = cueplan(
-      "collide --speed 2 --cut 0 --topspin-k 0 --mu-ball 0 --ball-restitution 1 --json");
+  const ProcessResult run =
+      cueplan("collide --speed 2 --cut 0 --topspin-k 0 --mu-ball 0 --ball-restitution 1 --json");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const json j = json::parse(run.out);
   EXPECT_NEAR(j["cue_ball"]["velocity"][0].get<double>(), 0.0, 1e-12);
@@ -227,12 +230,39 @@ TEST(Collide, CutMessageIsTheDocumentedOne) {
 TEST(Collide, HelpStatesEveryFlagWithUnitsAndDefaults) {
   const ProcessResult run = cueplan("collide --help");
   EXPECT_EQ(run.exit_code, 0);
-  for (const char* needle :
-       {"--speed", "--cut", "--topspin-k", "--sidespin-k", "--topspin", "--sidespin", "--spin",
-        "--model", "--ball-friction", "--method", "--steps", "--tolerance", "--mu-ball",
-        "--ball-restitution", "--mu-table", "--mass", "--radius", "--json", "--batch",
-        "--threads", "m/s", "deg", "rad/s", "(kg)", "(m)", "mathavan_2014", "0.89", "0.05",
-        "0.212", "0.1406", "0.02625", "5000", "1e-12"})
+  for (const char* needle : {"--speed",
+                             "--cut",
+                             "--topspin-k",
+                             "--sidespin-k",
+                             "--topspin",
+                             "--sidespin",
+                             "--spin",
+                             "--model",
+                             "--ball-friction",
+                             "--method",
+                             "--steps",
+                             "--tolerance",
+                             "--mu-ball",
+                             "--ball-restitution",
+                             "--mu-table",
+                             "--mass",
+                             "--radius",
+                             "--json",
+                             "--batch",
+                             "--threads",
+                             "m/s",
+                             "deg",
+                             "rad/s",
+                             "(kg)",
+                             "(m)",
+                             "mathavan_2014",
+                             "0.89",
+                             "0.05",
+                             "0.212",
+                             "0.1406",
+                             "0.02625",
+                             "5000",
+                             "1e-12"})
     EXPECT_NE(run.out.find(needle), std::string::npos) << "missing " << needle;
 }
 
@@ -262,9 +292,9 @@ TEST(CollideBatch, EveryRowComesOutAndBadRowsAloneFail) {
   EXPECT_EQ(lines_of(run.out).at(0), kBatchHeader);
   const auto rows = csv_rows(run.out);
   ASSERT_EQ(rows.size(), 8u);
-  const std::vector<std::string> statuses = {"ok",          "ok",          "invalid_input",
-                                             "parse_error", "parse_error", "invalid_input",
-                                             "invalid_input", "ok"};
+  const std::vector<std::string> statuses = {
+      "ok", "ok", "invalid_input", "parse_error", "parse_error", "invalid_input", "invalid_input",
+      "ok"};
   for (size_t i = 0; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i].at("status"), statuses[i]) << "row " << i;
     const bool good = statuses[i] == "ok";

@@ -75,7 +75,9 @@ struct Pair {
 };
 std::vector<Pair> random_pairs(uint64_t seed, int count, double spin_k = 3.0) {
   std::mt19937_64 rng(seed);
-  auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto u = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   std::vector<Pair> out;
   while (static_cast<int>(out.size()) < count) {
     const double v = u(0.01, 5.0), cut = u(-88.0, 88.0) * kDeg, w = v / kDefaults.radius;
@@ -106,8 +108,8 @@ class RungeKuttaReference {
 
   // Collision-frame states in, outgoing states out.
   void collide(BallState* i, BallState* j) const {
-    State s = {i->velocity.x, i->velocity.y, i->spin.x, i->spin.y, i->spin.z,
-               j->velocity.x, j->velocity.y, j->spin.x, j->spin.y, j->spin.z, 0.0};
+    State s = {i->velocity.x, i->velocity.y, i->spin.x, i->spin.y, i->spin.z, j->velocity.x,
+               j->velocity.y, j->spin.x,     j->spin.y, j->spin.z, 0.0};
     const double a0 = s[kVin] - s[kVjn];
     const double h = 0.5 * (1.0 + p_.restitution) * p_.mass * a0 / steps_;
     const double b_decay = 7.0 * p_.mu_ball / p_.mass;  // the fastest |b| can shrink per unit P
@@ -204,8 +206,10 @@ class RungeKuttaReference {
         *gn = -p_.mu_table * std::abs(fz) * cn / m;
       };
       const double r = p_.radius;
-      if (fz < 0.0) cloth(s[kVit] - r * s[kWin], s[kVin] + r * s[kWit], ft, -1.0 + 2.5 * fz, &git, &gin);
-      if (fz > 0.0) cloth(s[kVjt] - r * s[kWjn], s[kVjn] + r * s[kWjt], -ft, 1.0 + 2.5 * fz, &gjt, &gjn);
+      if (fz < 0.0)
+        cloth(s[kVit] - r * s[kWin], s[kVin] + r * s[kWit], ft, -1.0 + 2.5 * fz, &git, &gin);
+      if (fz > 0.0)
+        cloth(s[kVjt] - r * s[kWjn], s[kVjn] + r * s[kWjt], -ft, 1.0 + 2.5 * fz, &gjt, &gjn);
     }
     const double m = p_.mass, r = p_.radius, inertia = 0.4 * m * r * r;
     State d;
@@ -231,9 +235,11 @@ class RungeKuttaReference {
       return o;
     };
     const State k1 = rate(s, geared, side), k2 = rate(plus(s, k1, h / 2), geared, side),
-                k3 = rate(plus(s, k2, h / 2), geared, side), k4 = rate(plus(s, k3, h), geared, side);
+                k3 = rate(plus(s, k2, h / 2), geared, side),
+                k4 = rate(plus(s, k3, h), geared, side);
     State o;
-    for (int k = 0; k < kSize; ++k) o[k] = s[k] + h / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k]);
+    for (int k = 0; k < kSize; ++k)
+      o[k] = s[k] + h / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k]);
     return o;
   }
 
@@ -302,8 +308,10 @@ TEST(BallCollision, MomentumConservedWithFrictionlessCloth) {
       const CollisionResult r = resolve_collision(p, in.i, in.j);
       ASSERT_EQ(r.status, CollisionStatus::ok) << r.message;
       const double tol = 1e-12 * in.speed;
-      EXPECT_NEAR(r.ball_i.velocity.y + r.ball_j.velocity.y, in.i.velocity.y + in.j.velocity.y, tol);
-      EXPECT_NEAR(r.ball_i.velocity.x + r.ball_j.velocity.x, in.i.velocity.x + in.j.velocity.x, tol);
+      EXPECT_NEAR(r.ball_i.velocity.y + r.ball_j.velocity.y, in.i.velocity.y + in.j.velocity.y,
+                  tol);
+      EXPECT_NEAR(r.ball_i.velocity.x + r.ball_j.velocity.x, in.i.velocity.x + in.j.velocity.x,
+                  tol);
     }
   }
 }
@@ -326,7 +334,8 @@ TEST(BallCollision, KineticEnergyNeverRises) {
       ASSERT_EQ(r.status, CollisionStatus::ok) << r.message;
       const double before = kinetic_energy(p, in.i) + kinetic_energy(p, in.j);
       const double after = kinetic_energy(p, r.ball_i) + kinetic_energy(p, r.ball_j);
-      EXPECT_LE(after, before * (1.0 + 1e-12)) << to_string(p.model) << " " << to_string(p.friction);
+      EXPECT_LE(after, before * (1.0 + 1e-12))
+          << to_string(p.model) << " " << to_string(p.friction);
     }
   }
 }
@@ -419,7 +428,8 @@ TEST(BallCollision, GearingOutsideEnglishGivesNoThrow) {
   for (double c : {10.0, 30.0, 60.0}) {
     for (double topspin_k : {0.0, 1.0}) {
       const double gearing_k = -std::sin(c * kDeg);  // k_S: left english for a cut to the right
-      const Shot geared = cut(kDefaults, 1.0, c, spin_k(1.0, topspin_k, gearing_k, kDefaults.radius));
+      const Shot geared =
+          cut(kDefaults, 1.0, c, spin_k(1.0, topspin_k, gearing_k, kDefaults.radius));
       const Shot plain = cut(kDefaults, 1.0, c, spin_k(1.0, topspin_k, 0.0, kDefaults.radius));
       EXPECT_LT(std::abs(throw_deg(geared)), 1e-9) << c << " " << topspin_k;
       EXPECT_GT(std::abs(throw_deg(plain)), 0.4) << c << " " << topspin_k;
@@ -458,13 +468,16 @@ TEST(BallCollision, StunShotEqualsTheClosedForm) {
     const Shot exact = cut(kDefaults, 1.3, c, {0.0, 0.0, 3.0});
     const Shot closed_form = cut(closed, 1.3, c, {0.0, 0.0, 3.0});
     ASSERT_EQ(exact.result.status, CollisionStatus::ok);
-    EXPECT_LT(outcome_difference(exact.result, closed_form.result, kDefaults.radius, 1.3), 1e-12) << c;
+    EXPECT_LT(outcome_difference(exact.result, closed_form.result, kDefaults.radius, 1.3), 1e-12)
+        << c;
     // The balls gear where the friction impulse mu_b P reaches M |b0| / 7, the impulse that
     // stops the slip: at the small cuts.
     const Vec3 cue = exact.geometry.cue_ball.velocity;
-    const double n_x = std::cos(c * kDeg), t_speed = cue.x * std::sin(c * kDeg);  // t = (-sin c, -cos c)
+    const double n_x = std::cos(c * kDeg),
+                 t_speed = cue.x * std::sin(c * kDeg);  // t = (-sin c, -cos c)
     const double b0 = std::abs(-t_speed - kDefaults.radius * 3.0);
-    const double gears = kDefaults.mu_ball * exact.result.impulse_total >= kDefaults.mass * b0 / 7.0;
+    const double gears =
+        kDefaults.mu_ball * exact.result.impulse_total >= kDefaults.mass * b0 / 7.0;
     EXPECT_EQ(exact.result.transition_count, gears ? 1 : 0) << c;
     EXPECT_EQ(gears, c < 20.0) << c;
     EXPECT_GT(cue.x * n_x, 0.0);
@@ -493,12 +506,14 @@ TEST(BallCollision, MirrorSymmetryOfCutAndSidespin) {
   std::vector<BallBallParams> models(2, kDefaults);
   models[1].model = BallModel::frictional_inelastic;
   for (const BallBallParams& p : models) {
-    for (const Vec3& spin : {Vec3{0.0, 40.0, 25.0}, Vec3{-15.0, -30.0, 60.0}, Vec3{5.0, 10.0, -80.0}}) {
+    for (const Vec3& spin :
+         {Vec3{0.0, 40.0, 25.0}, Vec3{-15.0, -30.0, 60.0}, Vec3{5.0, 10.0, -80.0}}) {
       for (double c : {5.0, 25.0, 50.0}) {
         const Shot a = cut(p, 1.4, c, spin);
         const Shot b = cut(p, 1.4, -c, {-spin.x, spin.y, -spin.z});
         ASSERT_EQ(a.result.status, CollisionStatus::ok);
-        for (const auto& [x, y] : {std::pair{a.result.ball_i, b.result.ball_i}, std::pair{a.result.ball_j, b.result.ball_j}}) {
+        for (const auto& [x, y] : {std::pair{a.result.ball_i, b.result.ball_i},
+                                   std::pair{a.result.ball_j, b.result.ball_j}}) {
           EXPECT_NEAR(x.velocity.x, y.velocity.x, 1e-12);
           EXPECT_NEAR(x.velocity.y, -y.velocity.y, 1e-12);
           EXPECT_NEAR(x.spin.x, -y.spin.x, 1e-10);
@@ -517,7 +532,8 @@ TEST(BallCollision, ScaleInvarianceInSpeed) {
   for (double c : {0.0, 20.0, 55.0}) {
     const Shot slow = cut(kDefaults, 0.4, c, spin_k(0.4, 0.6, -0.8, kDefaults.radius));
     const Shot fast = cut(kDefaults, 2.8, c, spin_k(2.8, 0.6, -0.8, kDefaults.radius));
-    for (const auto& [s, f] : {std::pair{slow.result.ball_i, fast.result.ball_i}, std::pair{slow.result.ball_j, fast.result.ball_j}}) {
+    for (const auto& [s, f] : {std::pair{slow.result.ball_i, fast.result.ball_i},
+                               std::pair{slow.result.ball_j, fast.result.ball_j}}) {
       EXPECT_NEAR(s.velocity.x / 0.4, f.velocity.x / 2.8, 1e-12);
       EXPECT_NEAR(s.velocity.y / 0.4, f.velocity.y / 2.8, 1e-12);
       EXPECT_NEAR(s.spin.z * kDefaults.radius / 0.4, f.spin.z * kDefaults.radius / 2.8, 1e-12);
@@ -538,7 +554,8 @@ TEST(BallCollision, TableFrameIsTheCollisionFrameTurned) {
   EXPECT_LT(outcome_difference(direct, along_y, kDefaults.radius, 1.0), 1e-15);
   const double turn = 0.7;  // rad, counter-clockwise
   auto rotate = [&](Vec3 v) {
-    return Vec3{std::cos(turn) * v.x - std::sin(turn) * v.y, std::sin(turn) * v.x + std::cos(turn) * v.y, v.z};
+    return Vec3{std::cos(turn) * v.x - std::sin(turn) * v.y,
+                std::sin(turn) * v.x + std::cos(turn) * v.y, v.z};
   };
   const BallState ti{rotate(i.velocity), rotate(i.spin)}, tj{rotate(j.velocity), rotate(j.spin)};
   const CollisionResult turned =
@@ -605,8 +622,10 @@ TEST(BallCollision, GearedBallsLeaveWithoutSlipBetweenThem) {
     const double bt = result.ball_i.velocity.x - result.ball_j.velocity.x -
                       r * (result.ball_i.spin.z + result.ball_j.spin.z);
     const double bz = r * (result.ball_i.spin.x + result.ball_j.spin.x);
-    if (geared) EXPECT_LT(std::hypot(bt, bz), 1e-10 * in.speed);
-    else EXPECT_GT(std::hypot(bt, bz), 1e-6 * in.speed);
+    if (geared)
+      EXPECT_LT(std::hypot(bt, bz), 1e-10 * in.speed);
+    else
+      EXPECT_GT(std::hypot(bt, bz), 1e-6 * in.speed);
   }
 }
 
@@ -663,11 +682,16 @@ TEST(BallCollision, PaperSchemeConvergesAtFirstOrder) {
 TEST(BallCollision, RollingVelocityMatchesADirectSlideIntegration) {
   const double r = kDefaults.radius, mu = 0.212, g = 9.81, dt = 2e-7;
   std::mt19937_64 rng(19);
-  auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto u = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   for (int n = 0; n < 6; ++n) {
-    BallState s{{u(-2.0, 2.0), u(-2.0, 2.0), 0.0}, {u(-80.0, 80.0), u(-80.0, 80.0), u(-80.0, 80.0)}};
+    BallState s{{u(-2.0, 2.0), u(-2.0, 2.0), 0.0},
+                {u(-80.0, 80.0), u(-80.0, 80.0), u(-80.0, 80.0)}};
     const Vec3 expected = rolling_velocity(s, r);
-    auto slip = [&](const BallState& b) { return Vec3{b.velocity.x - r * b.spin.y, b.velocity.y + r * b.spin.x, 0.0}; };
+    auto slip = [&](const BallState& b) {
+      return Vec3{b.velocity.x - r * b.spin.y, b.velocity.y + r * b.spin.x, 0.0};
+    };
     const Vec3 u0 = slip(s);
     for (int step = 0; step < 10000000 && dot(slip(s), u0) > 0.0; ++step) {
       const Vec3 d = (1.0 / norm(slip(s))) * slip(s);
@@ -725,7 +749,8 @@ INSTANTIATE_TEST_SUITE_P(
         bad("NanRadius", {"radius"}, [](BadCase& c) { c.params.radius = kNan; }),
         bad("NegativeBallFriction", {"mu_ball"}, [](BadCase& c) { c.params.mu_ball = -0.01; }),
         bad("ZeroRestitution", {"restitution"}, [](BadCase& c) { c.params.restitution = 0.0; }),
-        bad("RestitutionAboveOne", {"restitution"}, [](BadCase& c) { c.params.restitution = 1.01; }),
+        bad("RestitutionAboveOne", {"restitution"},
+            [](BadCase& c) { c.params.restitution = 1.01; }),
         bad("InfiniteClothFriction", {"mu_table"},
             [](BadCase& c) { c.params.mu_table = std::numeric_limits<double>::infinity(); }),
         bad("FrictionHoldingTheClothSlip", {"mu_ball"},
@@ -740,12 +765,14 @@ INSTANTIATE_TEST_SUITE_P(
         bad("NanVelocity", {"ball_i", "velocity", "x"}, [](BadCase& c) { c.i.velocity.x = kNan; }),
         bad("NanSpin", {"ball_j", "spin", "z"}, [](BadCase& c) { c.j.spin.z = kNan; }),
         bad("Airborne", {"ball_j", "velocity", "z"}, [](BadCase& c) { c.j.velocity.z = 0.1; }),
-        bad("NotApproaching", {"ball_i", "velocity", "y"}, [](BadCase& c) { c.j.velocity.y = 1.5; })),
+        bad("NotApproaching", {"ball_i", "velocity", "y"},
+            [](BadCase& c) { c.j.velocity.y = 1.5; })),
     [](const ::testing::TestParamInfo<BadCase>& param) { return param.param.name; });
 
 TEST(BallCollision, TableFormRefusesCoincidingCentresAndNamesThem) {
   const BallState moving{{1.0, 0.0, 0.0}, {}};
-  CollisionResult r = resolve_table_collision(kDefaults, {0.5, 0.5, 0.0}, moving, {0.5, 0.5, 0.0}, {});
+  CollisionResult r =
+      resolve_table_collision(kDefaults, {0.5, 0.5, 0.0}, moving, {0.5, 0.5, 0.0}, {});
   EXPECT_EQ(r.status, CollisionStatus::invalid_input);
   ASSERT_TRUE(r.error.has_value());
   EXPECT_EQ(r.error->field, (FieldPath{"centre_j"}));
@@ -761,12 +788,14 @@ TEST(BallCollision, TableFormRefusesCoincidingCentresAndNamesThem) {
 
 TEST(BallCollision, NamesRoundTrip) {
   for (BallModel m : {BallModel::mathavan_2014, BallModel::frictional_inelastic}) {
-    BallModel back = BallModel::frictional_inelastic == m ? BallModel::mathavan_2014 : BallModel::frictional_inelastic;
+    BallModel back = BallModel::frictional_inelastic == m ? BallModel::mathavan_2014
+                                                          : BallModel::frictional_inelastic;
     ASSERT_TRUE(parse_ball_model(to_string(m), &back));
     EXPECT_EQ(back, m);
   }
   for (BallFriction f : {BallFriction::constant, BallFriction::speed_dependent}) {
-    BallFriction back = BallFriction::constant == f ? BallFriction::speed_dependent : BallFriction::constant;
+    BallFriction back =
+        BallFriction::constant == f ? BallFriction::speed_dependent : BallFriction::constant;
     ASSERT_TRUE(parse_ball_friction(to_string(f), &back));
     EXPECT_EQ(back, f);
   }

@@ -46,9 +46,9 @@ bool parse_collision_method(const std::string& name, CollisionMethod* out);
 // Fixed parameters of a collision between two equal balls. SI units; defaults are the
 // paper's (PHYSICS.md), with the cloth friction of the scene.
 struct BallBallParams {
-  double mass = 0.1406;     // kg, each ball
-  double radius = 0.02625;  // m, each ball
-  double mu_ball = 0.05;    // ball-ball sliding friction mu_b
+  double mass = 0.1406;       // kg, each ball
+  double radius = 0.02625;    // m, each ball
+  double mu_ball = 0.05;      // ball-ball sliding friction mu_b
   double restitution = 0.89;  // e_b, energetic coefficient of restitution, (0, 1]
   double mu_table = 0.212;    // ball-cloth sliding friction mu_s (the scene's mu_slide)
   BallModel model = BallModel::mathavan_2014;
@@ -62,7 +62,7 @@ struct BallBallParams {
 
 struct CollisionOptions {
   CollisionMethod method = CollisionMethod::exact;
-  int paper_steps = 5000;   // paper: N, with dP = (1 + e_b) M a0 / (2 N)
+  int paper_steps = 5000;    // paper: N, with dP = (1 + e_b) M a0 / (2 N)
   double tolerance = 1e-12;  // exact: local error per step, relative to the speed scale
                              // max(|v_i|, |v_j|); in [1e-15, 1e-2]
   int max_steps = 10000;     // exact: bound on accepted plus rejected steps, >= 1
@@ -111,7 +111,7 @@ struct CollisionResult {
   double work_compression = 0.0;     // J, W_c = integral of a dP up to a = 0
   double work_total = 0.0;           // J, W at the end of the collision
 
-  bool balls_slipping_at_start = true;   // b != 0 at first contact
+  bool balls_slipping_at_start = true;    // b != 0 at first contact
   bool cloth_i_slipping_at_start = true;  // ball i's cloth slip c_i != 0 at first contact
   bool cloth_j_slipping_at_start = true;
   std::array<CollisionTransition, kMaxCollisionTransitions> transitions{};
