@@ -86,6 +86,11 @@ const BadCommandLine kBadCommandLines[] = {
     {"ReboundRestitutionNaN", "rebound --speed 1 --angle 45 --restitution nan", "--restitution"},
     {"ReboundBatchMissing", "rebound --batch SCRATCH/missing.csv", "--batch"},
     {"ReboundThreadsNegative", "rebound --batch SCRATCH/missing.csv --threads -1", "--threads"},
+    // collide
+    {"CollideSpeedNaN", "collide --speed nan --cut 30", "--speed"},
+    {"CollideCutMissing", "collide --speed 1", "--cut"},
+    {"CollideUnknownModel", "collide --speed 1 --cut 30 --model fast", "--model"},
+    {"CollideBatchMissing", "collide --batch SCRATCH/missing.csv", "--batch"},
     // simulate
     {"SimulateSpeedNaN", "simulate PROBLEM --speed nan --aim 0", "--speed"},
     {"SimulateSpeedNegative", "simulate PROBLEM --speed -2 --aim 0", "--speed"},
