@@ -15,7 +15,7 @@
 // Options: --problems DIR (default: the source tree's problems/), --generated N (50),
 // --seeds N (plans per problem with seeds 1..N, 2), --global M / --local M (those
 // pairings only; "none" skips them), --tight-evaluations N (the second pairing table's
-// budget, 400), --sweep-global M / --sweep-local M (the methods the time sweep is
+// budget, 400; 0 skips it), --sweep-global M / --sweep-local M (the methods the time sweep is
 // centred on; default: PlannerOptions' defaults), --no-sweep, --out FILE (JSON),
 // --per-run (every plan's status, time and evaluations in the JSON too); and
 // to try other settings: --max-evaluations N, --global-share F, --local-starts N,
@@ -27,6 +27,7 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,7 @@ struct Case {
   std::string set;  // "shipped" or "generated"
   problems::Problem problem;
   physics::SimulationOptions simulation;  // with a table covering the problem
+  std::optional<physics::Shot> witness;   // generated: the stroke the target came from
 };
 
 struct Run {
@@ -58,6 +60,8 @@ struct Run {
   int evaluations = 0;
   int families = 0;
   double miss = 0.0;
+  double answer_p = -1.0;   // the answer's success probability on fresh draws (solved plans)
+  double witness_p = -1.0;  // the witness's, on the same fresh draws (generated problems)
 };
 
 struct Summary {
@@ -80,6 +84,9 @@ struct Stats {
   double success = 0.0, shipped = 0.0, generated = 0.0, median_ms = 0.0, p95_ms = 0.0,
          plans_per_s = 0.0, mean_evaluations = 0.0, mean_families = 0.0;
   int no_solution = 0, exhausted = 0;
+  // The answers' success probabilities (solved plans), and on generated problems the
+  // fraction whose answer succeeds at least as often as the witness.
+  double mean_answer_p = 0.0, mean_witness_p = 0.0, at_least_witness = 0.0;
 };
 
 Stats stats(const std::vector<Run>& runs) {
@@ -102,6 +109,21 @@ Stats stats(const std::vector<Run>& runs) {
     s.no_solution += r.status == "no_solution_found";
     s.exhausted += r.status == "budget_exhausted";
   }
+  int answered = 0, compared = 0;
+  for (const Run& r : runs) {
+    if (r.answer_p < 0.0) continue;
+    ++answered;
+    s.mean_answer_p += r.answer_p;
+    if (r.witness_p < 0.0) continue;
+    ++compared;
+    s.mean_witness_p += r.witness_p;
+    s.at_least_witness += r.answer_p >= r.witness_p;
+  }
+  if (answered) s.mean_answer_p /= answered;
+  if (compared) {
+    s.mean_witness_p /= compared;
+    s.at_least_witness /= compared;
+  }
   const double n = static_cast<double>(runs.size());
   s.success = (ok_ship + ok_gen) / n;
   s.shipped = n_ship ? static_cast<double>(ok_ship) / n_ship : 0.0;
@@ -113,6 +135,9 @@ Stats stats(const std::vector<Run>& runs) {
   s.mean_families /= n;
   return s;
 }
+
+constexpr uint64_t kFreshSeed = 1000003;  // added to the plan's seed
+constexpr int kFreshSamples = 400;
 
 std::vector<Run> run_all(const std::vector<Case>& cases, planner::PlannerOptions options,
                          int seeds) {
@@ -132,6 +157,16 @@ std::vector<Run> run_all(const std::vector<Case>& cases, planner::PlannerOptions
       run.evaluations = r.evaluations;
       run.families = run.solved ? 1 + static_cast<int>(r.alternatives.size()) : 0;
       run.miss = r.best.miss_distance;
+      // The answer's success judged afresh: on draws the planner never saw (another
+      // seed), so that picking the best of several noisy estimates does not flatter it.
+      if (run.solved && options.robustness_samples > 0) {
+        const uint64_t fresh = options.seed + kFreshSeed;
+        run.answer_p = planner::success_probability(c.problem, r.best.shot, options.noise,
+                                                    kFreshSamples, fresh, options.simulation);
+        if (c.witness)
+          run.witness_p = planner::success_probability(c.problem, *c.witness, options.noise,
+                                                       kFreshSamples, fresh, options.simulation);
+      }
       runs.push_back(run);
     }
   return runs;
@@ -146,11 +181,13 @@ std::string json_summary(const Summary& s, bool per_run) {
                 "\"plans\": %zu, \"success\": %.6g, \"success_shipped\": %.6g, "
                 "\"success_generated\": %.6g, \"median_ms\": %.6g, \"p95_ms\": %.6g, "
                 "\"plans_per_s\": %.6g, \"mean_evaluations\": %.6g, \"mean_families\": %.6g, "
-                "\"no_solution_found\": %d, \"budget_exhausted\": %d",
+                "\"no_solution_found\": %d, \"budget_exhausted\": %d, \"mean_answer_p\": %.6g, "
+                "\"mean_witness_p\": %.6g, \"at_least_witness\": %.6g",
                 s.global.c_str(), s.local.c_str(), s.label.c_str(), s.budget_s, s.max_evaluations,
                 s.runs.size(),
                 t.success, t.shipped, t.generated, t.median_ms, t.p95_ms, t.plans_per_s,
-                t.mean_evaluations, t.mean_families, t.no_solution, t.exhausted);
+                t.mean_evaluations, t.mean_families, t.no_solution, t.exhausted, t.mean_answer_p,
+                t.mean_witness_p, t.at_least_witness);
   std::string out = buf;
   if (!per_run) return out + "}";
   out += ", \"runs\": [";
@@ -169,10 +206,12 @@ std::string json_summary(const Summary& s, bool per_run) {
 
 void print_row(const Summary& s) {
   const Stats t = stats(s.runs);
-  std::printf("| %s | %s | %.1f %% | %.0f %% | %.1f %% | %.2f ms | %.2f ms | %.0f | %.0f | %.1f | %d | %d |\n",
+  std::printf("| %s | %s | %.1f %% | %.0f %% | %.1f %% | %.2f ms | %.2f ms | %.0f | %.0f | %.1f | %d | %d "
+              "| %.1f %% | %.1f %% | %.0f %% |\n",
               s.global.c_str(), s.local.c_str(), 100 * t.success, 100 * t.shipped,
               100 * t.generated, t.median_ms, t.p95_ms, t.plans_per_s, t.mean_evaluations,
-              t.mean_families, t.no_solution, t.exhausted);
+              t.mean_families, t.no_solution, t.exhausted, 100 * t.mean_answer_p,
+              100 * t.mean_witness_p, 100 * t.at_least_witness);
   std::fflush(stdout);
 }
 
@@ -255,7 +294,7 @@ int main(int argc, char** argv) {
   for (Case& c : cases) c.simulation = simulation_for(c.problem.scene.ball_and_cushion);
   const physics::SimulationOptions snooker = simulation_for(physics::snooker_scene().ball_and_cushion);
   for (auto& k : planner::known_shot_problems(generated, 2026, snooker))
-    cases.push_back({"generated", std::move(k.problem), snooker});
+    cases.push_back({"generated", std::move(k.problem), snooker, k.shot});
   std::fprintf(stderr, "%zu shipped and %d generated problems, %d seeds each\n", files.size(),
                generated, seeds);
 
@@ -282,11 +321,14 @@ int main(int argc, char** argv) {
   const planner::LocalMethod locals[] = {planner::LocalMethod::bobyqa, planner::LocalMethod::sbplx,
                                          planner::LocalMethod::cobyla, planner::LocalMethod::neldermead};
   std::vector<Summary> pairings, budgets;
-  for (int budget : {base.max_evaluations, tight_evaluations}) {
+  std::vector<int> pairing_budgets{base.max_evaluations};
+  if (tight_evaluations > 0) pairing_budgets.push_back(tight_evaluations);
+  for (int budget : pairing_budgets) {
     std::printf("\nevery pairing, max_evaluations %d\n\n"
                 "| global | local | success | shipped | generated | median | p95 | plans/s | "
-                "mean evaluations | mean families (solved) | no solution found | budget exhausted |\n"
-                "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", budget);
+                "mean evaluations | mean families (solved) | no solution found | budget exhausted | "
+                "answer P | witness P | answer >= witness |\n"
+                "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", budget);
     for (auto g : globals)
       for (auto l : locals) {
         if (!only_global.empty() && only_global != planner::to_string(g)) continue;
