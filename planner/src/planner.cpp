@@ -533,7 +533,9 @@ class Planning {
     if (samples == 0 || shots.empty()) return;
     std::vector<Final*> alive = shots;
     for (size_t n = std::min(samples, kFirstRound);; n = std::min(samples, 2 * n)) {
-      const std::span<const detail::NoiseDraw> draws(draws_.data(), n);
+      draws_.grow_to(n, deadline_);
+      const std::span<const detail::NoiseDraw> draws(draws_.draws().data(),
+                                                     std::min(n, draws_.draws().size()));
       std::vector<int> before(alive.size());
       for (size_t i = 0; i < alive.size(); ++i) before[i] = alive[i]->sampled.simulations;
       physics::parallel_for(
@@ -549,7 +551,7 @@ class Planning {
         f.shot.success = f.sampled.success;
         f.shot.success_probability = f.sampled.success.both.p;
       }
-      if (n == samples || Clock::now() >= deadline_) break;
+      if (n == samples || draws.size() < n || Clock::now() >= deadline_) break;
       const Final* leader = alive.front();
       for (const Final* f : alive)
         if (f->sampled.success.both.p > leader->sampled.success.both.p) leader = f;
@@ -576,7 +578,6 @@ class Planning {
   // 6. The solved shots by the coach's order, each with its success; or the nearest
   // unsolved one when none is solved.
   void rank_stage(const Task& task) {
-    draws_ = detail::noise_draws(options_.robustness_samples, options_.seed);
     any_solved_ = std::any_of(finals_.begin(), finals_.end(),
                               [](const Final& f) { return f.shot.solves; });
     if (!any_solved_) {
@@ -752,7 +753,7 @@ class Planning {
   bool timed_out_ = false;
   bool out_of_evaluations_ = false;
   std::vector<Final> finals_;
-  std::vector<detail::NoiseDraw> draws_;  // the common draws of every success estimate
+  detail::NoiseStream draws_{options_.seed};  // the common draws of every success estimate
   bool any_solved_ = false;
   int robust_improved_ = 0;
 };

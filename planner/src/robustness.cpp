@@ -24,21 +24,34 @@ uint64_t stream_seed(uint64_t seed, uint64_t stream) {
   return z ^ (z >> 31);
 }
 
-std::vector<NoiseDraw> noise_draws(int samples, uint64_t seed) {
-  std::mt19937_64 rng(stream_seed(seed, 0x6e6f697365ULL));  // "noise"
-  std::vector<NoiseDraw> draws(static_cast<size_t>(std::max(samples, 0)));
+NoiseStream::NoiseStream(uint64_t seed) : rng_(stream_seed(seed, 0x6e6f697365ULL)) {}  // "noise"
+
+void NoiseStream::grow_to(size_t count, Clock::time_point deadline) {
+  constexpr size_t kChunk = 4096;  // draws between looks at the clock
+  const bool timed = deadline != Clock::time_point::max();
   // Box-Muller: two uniforms give two independent standard normals.
   auto pair = [&](double* a, double* b) {
-    const double r = std::sqrt(-2.0 * std::log(open_uniform(rng)));
-    const double t = 2.0 * std::numbers::pi * open_uniform(rng);
+    const double r = std::sqrt(-2.0 * std::log(open_uniform(rng_)));
+    const double t = 2.0 * std::numbers::pi * open_uniform(rng_);
     *a = r * std::cos(t);
     *b = r * std::sin(t);
   };
-  for (NoiseDraw& d : draws) {
-    pair(&d.aim, &d.speed);
-    pair(&d.right, &d.up);
+  while (draws_.size() < count) {
+    if (timed && Clock::now() >= deadline) return;
+    const size_t end = std::min(count, draws_.size() + kChunk);
+    while (draws_.size() < end) {
+      NoiseDraw d;
+      pair(&d.aim, &d.speed);
+      pair(&d.right, &d.up);
+      draws_.push_back(d);
+    }
   }
-  return draws;
+}
+
+std::vector<NoiseDraw> noise_draws(int samples, uint64_t seed) {
+  NoiseStream stream(seed);
+  stream.grow_to(static_cast<size_t>(std::max(samples, 0)));
+  return stream.draws();
 }
 
 bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseModel& noise,

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <random>
 #include <span>
 #include <vector>
 
@@ -22,6 +23,23 @@ struct NoiseDraw {
 // platform (the normals come from mt19937_64 by Box-Muller, not from <random>'s
 // implementation-defined distributions).
 std::vector<NoiseDraw> noise_draws(int samples, uint64_t seed);
+
+using Clock = std::chrono::steady_clock;
+
+// The same stream drawn as far as it is needed: draws() are always the first draws of
+// noise_draws(n, seed).
+class NoiseStream {
+ public:
+  explicit NoiseStream(uint64_t seed);
+  // Draws until there are `count`, or until `deadline` passes (checked every few
+  // thousand draws).
+  void grow_to(size_t count, Clock::time_point deadline = Clock::time_point::max());
+  const std::vector<NoiseDraw>& draws() const { return draws_; }
+
+ private:
+  std::mt19937_64 rng_;
+  std::vector<NoiseDraw> draws_;
+};
 
 // The stroke a player makes aiming at `shot` with errors `draw` scaled by `noise`.
 // False for a miscue (tip offset beyond miscue_k) or a stroke without speed.
@@ -59,8 +77,6 @@ struct Sampled {
   Success success;
   int simulations = 0;  // strokes simulated (a miscue is not simulated)
 };
-
-using Clock = std::chrono::steady_clock;
 
 // `shot` played with each of `draws` until they run out or `deadline` passes.
 Sampled sample_success(const Task& task, const physics::Shot& shot,

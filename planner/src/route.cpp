@@ -568,8 +568,9 @@ Verified verify(Context& ctx, const std::vector<physics::Shot>& shots) {
     s.zone_radius = last ? p.tolerance : o.intermediate_zone_m;
     if (o.robustness_samples > 0) {
       const problems::Problem zone = zone_problem(p, o, at, e.final_position, last);
-      s.planned.success_probability = success_probability(
-          zone, e.shot, o.noise, o.robustness_samples, mix(o.seed, kSuccessStream), exact);
+      s.planned.success = estimate_success(zone, e.shot, o.noise, o.robustness_samples,
+                                           mix(o.seed, kSuccessStream), exact);
+      s.planned.success_probability = s.planned.success.both.p;
       ctx.evaluations += o.robustness_samples;
     }
     at = e.final_position;
