@@ -350,7 +350,7 @@ class Planning {
   void polish_stage(const Task& task) {
     uint64_t stream = 1;
     const int first_share = (options_.max_evaluations - result_.evaluations) / options_.local_starts;
-    while (!timed_out_) {
+    for (bool solved = false; !(solved && options_.stop_at_first_solution) && !timed_out_;) {
       std::vector<size_t> unfinished;
       for (size_t i = 0; i < polished_.size(); ++i)
         if (!polished_[i].converged()) unfinished.push_back(i);
@@ -388,6 +388,7 @@ class Planning {
         result_.evaluations += p.evaluations;
         spent += p.evaluations;
         timed_out_ = timed_out_ || detail::out_of_time(p.code);
+        solved = solved || p.best.score <= problem_.tolerance;
         if (!continuing) {
           polished_.push_back(p);
           continue;
@@ -486,6 +487,7 @@ class Planning {
   // held (speed, aim and topspin free). The variants that land join the candidates;
   // the rank stage decides whether the side earned its place.
   void simplify_stage(const Task& task) {
+    if (options_.stop_at_first_solution) return;
     struct Job {
       size_t parent;
       double side;

@@ -154,6 +154,7 @@ bool steer(const problems::Problem& problem, const RouteOptions& options, physic
   o.threads = 1;
   o.robustness_samples = 0;
   o.max_alternatives = 0;
+  o.stop_at_first_solution = true;
   o.verify_exact = false;
   o.simulation = options.simulation;
   o.simulation.record_path = false;

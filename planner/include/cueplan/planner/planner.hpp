@@ -110,6 +110,11 @@ struct PlannerOptions {
   int robust_search_samples = 32;    // robust mode: common noise draws per objective call
   int robust_max_evaluations = 20000;  // robust mode: shot simulations for the robust polish
   int max_alternatives = 5;          // distinct solutions returned besides the best
+  // Stop polishing at the first pass in which a stroke lands and skip the side
+  // variants: the quickest landing stroke rather than the coach's choice among many
+  // (the route planner's steering uses it). By default the polish goes on through the
+  // families the budget allows and every solved stroke with side is tried without it.
+  bool stop_at_first_solution = false;
   physics::SimulationOptions simulation;  // impact method (and table), accuracy, events
   // When `simulation` searches with the impact table, re-simulate the returned shots
   // with the exact method (accuracy 1e-9) and report those outcomes; a shot the exact
