@@ -1,8 +1,10 @@
 #include "shot_words.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "cueplan/physics/impact_table.hpp"
+#include "cueplan/planner/planner.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -67,6 +69,13 @@ std::string fixed(const char* pattern, double value) {
   char buf[64];
   std::snprintf(buf, sizeof buf, pattern, value);
   return buf;
+}
+
+std::string tip_offset_words(const phys::Shot& shot) {
+  const planner::TipOffset t = planner::tip_offset(shot);
+  return fixed("%.3f", std::abs(t.right)) + " R " + (t.right < 0.0 ? "left" : "right") +
+         " of centre, " + fixed("%.3f", std::abs(t.up)) + " R " + (t.up < 0.0 ? "below" : "above") +
+         " centre";
 }
 
 std::string cushions_allowed(const problems::Limits& limits) {

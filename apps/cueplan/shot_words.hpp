@@ -17,6 +17,10 @@ std::string number(double value, const char* unit = nullptr);
 // One number through a printf pattern, e.g. fixed("%.1f %%", 100 * p).
 std::string fixed(const char* pattern, double value);
 
+// Where the tip meets the cue ball, as fractions of its radius R, in words:
+// "0.231 R right of centre, 0.100 R below centre".
+std::string tip_offset_words(const physics::Shot& shot);
+
 // The cushion counts a problem allows: "1" or "1 to 3".
 std::string cushions_allowed(const problems::Limits& limits);
 
