@@ -272,7 +272,8 @@ Box text_box(const Text& text, double x, double y, Anchor anchor) {
 // ---------------------------------------------------------------------------
 // Canvas
 
-Canvas::Canvas(double width, double height) : width_(width), height_(height) {}
+// Whole units, so that the page of every format ends where the picture does.
+Canvas::Canvas(double width, double height) : width_(std::ceil(width)), height_(std::ceil(height)) {}
 
 void Canvas::fill(const Path& path, Colour colour, std::string role) {
   Shape s;

@@ -120,7 +120,7 @@ Box text_box(const Text& text, double x, double y, Anchor anchor);
 
 class Canvas {
  public:
-  Canvas(double width, double height);
+  Canvas(double width, double height);  // rounded up to whole units
   double width() const { return width_; }
   double height() const { return height_; }
 

@@ -142,12 +142,17 @@ Encoded encode(const Picture& picture, Format format, const EncodeOptions& optio
       cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "cueplan");
       break;
     case Format::png:
-      surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32,
+      // Opaque: every picture paints its white page first, so no alpha channel is stored.
+      surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24,
                                            static_cast<int>(std::ceil(width * scale)),
                                            static_cast<int>(std::ceil(height * scale)));
       break;
   }
   cairo_t* cr = cairo_create(surface);
+  if (format == Format::png) {  // the page beyond a fractional picture's edge, too
+    cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+    cairo_paint(cr);
+  }
   cairo_scale(cr, scale, scale);
   picture.canvas()->paint(cr);
   cairo_status_t status = cairo_status(cr);

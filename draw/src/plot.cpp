@@ -265,7 +265,7 @@ Picture plot_picture(const PlotFigure& figure, const PlotStyle& style) {
 
   auto canvas = std::make_shared<Canvas>(width, height);
   Canvas& c = *canvas;
-  c.fill(Path().rect(0.0, 0.0, width, height), detail::white(), "background");
+  c.fill(Path().rect(0.0, 0.0, c.width(), c.height()), detail::white(), "background");
   if (!figure.title.empty())
     c.text(title, kOuter, title_top, detail::kTopLeft, detail::ink(), "title");
   if (!figure.caption.empty())

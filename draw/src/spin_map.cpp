@@ -665,7 +665,7 @@ Picture spin_map_picture(const SpinMapScene& scene) {
   const Layout l = lay_out(scene, type);
   auto canvas = std::make_shared<Canvas>(l.width, l.height);
   Canvas& c = *canvas;
-  c.fill(Path().rect(0.0, 0.0, l.width, l.height), detail::white(), "background");
+  c.fill(Path().rect(0.0, 0.0, c.width(), c.height()), detail::white(), "background");
   titles(c, l);
   disc(c, l, scene);
   disc_axes(c, l, type);

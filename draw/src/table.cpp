@@ -835,6 +835,7 @@ void labels(Canvas& c, const Layout& l, const TableScene& scene,
   if (scene.target)
     avoid_disc(l.f.at(scene.target->centre),
                std::max(scene.target->radius * l.f.scale, l.ball) + 7.0);
+  for (const TableDot& d : scene.dots) avoid_disc(l.f.at(d.position), d.radius);
 
   // Cushion numbers on the cushion band, each where its contact met the cushion (slid
   // along the band when another number sits there).
@@ -993,7 +994,7 @@ std::shared_ptr<Canvas> draw_table(const TableScene& scene, const TableStyle& st
   const Layout l = lay_out(scene, style, type);
   auto canvas = std::make_shared<Canvas>(l.canvas_width, l.canvas_height);
   Canvas& c = *canvas;
-  c.fill(Path().rect(0.0, 0.0, l.canvas_width, l.canvas_height), white(), "background");
+  c.fill(Path().rect(0.0, 0.0, c.width(), c.height()), white(), "background");
   const std::vector<PlacedPath> placed = place_paths(scene, l, style.line_width);
   titles(c, l);
   table_bed(c, l);
