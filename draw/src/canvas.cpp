@@ -12,21 +12,6 @@ namespace {
 
 constexpr const char* kFontFamily = "DejaVu Sans";
 
-std::string escape_markup(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 // The label's Pango markup and its plain words: "k_{T}" -> "k<sub>T</sub>" and "kT".
 std::pair<std::string, std::string> markup_of(std::string_view label) {
   std::string markup, plain;
@@ -37,15 +22,15 @@ std::pair<std::string, std::string> markup_of(std::string_view label) {
     const size_t open = std::min(sub, sup);
     const size_t close = open == std::string_view::npos ? open : label.find('}', open);
     if (close == std::string_view::npos) {
-      markup += escape_markup(label.substr(i));
+      markup += escape_xml(label.substr(i));
       plain += label.substr(i);
       break;
     }
-    markup += escape_markup(label.substr(i, open - i));
+    markup += escape_xml(label.substr(i, open - i));
     plain += label.substr(i, open - i);
     const std::string_view inner = label.substr(open + 2, close - open - 2);
     const char* tag = open == sub ? "sub" : "sup";
-    markup += std::string("<") + tag + ">" + escape_markup(inner) + "</" + tag + ">";
+    markup += std::string("<") + tag + ">" + escape_xml(inner) + "</" + tag + ">";
     plain += inner;
     i = close + 1;
   }
@@ -99,6 +84,21 @@ Box rotated_box(const Box& b, double px, double py, double angle_deg) {
 }
 
 }  // namespace
+
+std::string escape_xml(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
 
 // ---------------------------------------------------------------------------
 // Path
@@ -273,47 +273,25 @@ Box text_box(const Text& text, double x, double y, Anchor anchor) {
 // Canvas
 
 // Whole units, so that the page of every format ends where the picture does.
-Canvas::Canvas(double width, double height) : width_(std::ceil(width)), height_(std::ceil(height)) {}
+Canvas::Canvas(double width, double height)
+    : width_(std::ceil(width)), height_(std::ceil(height)) {}
 
 void Canvas::fill(const Path& path, Colour colour, std::string role) {
-  Shape s;
-  s.path = path;
-  s.filled = true;
-  s.fill = colour;
-  s.role = std::move(role);
-  ops_.push_back(std::move(s));
+  ops_.push_back(Shape{path, true, colour, false, Pen(), std::move(role), {}, {}, {}});
 }
 
 void Canvas::stroke(const Path& path, const Pen& pen, std::string role) {
-  Shape s;
-  s.path = path;
-  s.stroked = true;
-  s.pen = pen;
-  s.role = std::move(role);
-  ops_.push_back(std::move(s));
+  ops_.push_back(Shape{path, false, Colour(), true, pen, std::move(role), {}, {}, {}});
 }
 
 void Canvas::fill_and_stroke(const Path& path, Colour fill, const Pen& pen, std::string role) {
-  Shape s;
-  s.path = path;
-  s.filled = true;
-  s.fill = fill;
-  s.stroked = true;
-  s.pen = pen;
-  s.role = std::move(role);
-  ops_.push_back(std::move(s));
+  ops_.push_back(Shape{path, true, fill, true, pen, std::move(role), {}, {}, {}});
 }
 
 void Canvas::fill_gradient(const Path& path, Point from, Point to, std::vector<Stop> stops,
                            std::string role) {
-  Shape s;
-  s.path = path;
-  s.filled = true;
-  s.gradient = std::move(stops);
-  s.from = from;
-  s.to = to;
-  s.role = std::move(role);
-  ops_.push_back(std::move(s));
+  ops_.push_back(
+      Shape{path, true, Colour(), false, Pen(), std::move(role), std::move(stops), from, to});
 }
 
 Box Canvas::text(const Text& text, double x, double y, Anchor anchor, Colour colour,

@@ -14,26 +14,6 @@
 namespace cueplan::draw {
 namespace {
 
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
-std::string escape_xml(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
   return CAIRO_STATUS_SUCCESS;
@@ -45,24 +25,12 @@ void add_svg_metadata(std::string* svg, const std::string& title, const std::str
   const size_t root = svg->find("<svg");
   const size_t open_end = root == std::string::npos ? root : svg->find('>', root);
   if (open_end == std::string::npos) return;
-  std::string metadata = "\n<title>" + escape_xml(title) + "</title>";
-  if (!description.empty()) metadata += "\n<desc>" + escape_xml(description) + "</desc>";
+  std::string metadata = "\n<title>" + detail::escape_xml(title) + "</title>";
+  if (!description.empty()) metadata += "\n<desc>" + detail::escape_xml(description) + "</desc>";
   svg->insert(open_end + 1, metadata);
 }
 
 }  // namespace
-
-Colour Colour::hex(std::string_view rrggbb, double alpha) {
-  if (rrggbb.size() != 7 || rrggbb[0] != '#') return {0.0, 0.0, 0.0, alpha};
-  double channel[3];
-  for (int i = 0; i < 3; ++i) {
-    const int hi = hex_digit(rrggbb[1 + 2 * i]);
-    const int lo = hex_digit(rrggbb[2 + 2 * i]);
-    if (hi < 0 || lo < 0) return {0.0, 0.0, 0.0, alpha};
-    channel[i] = (16 * hi + lo) / 255.0;
-  }
-  return {channel[0], channel[1], channel[2], alpha};
-}
 
 std::string Colour::to_hex() const {
   const auto byte = [](double v) {
@@ -143,9 +111,9 @@ Encoded encode(const Picture& picture, Format format, const EncodeOptions& optio
       break;
     case Format::png:
       // Opaque: every picture paints its white page first, so no alpha channel is stored.
-      surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24,
-                                           static_cast<int>(std::ceil(width * scale)),
-                                           static_cast<int>(std::ceil(height * scale)));
+      surface =
+          cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(std::ceil(width * scale)),
+                                     static_cast<int>(std::ceil(height * scale)));
       break;
   }
   cairo_t* cr = cairo_create(surface);

@@ -47,21 +47,11 @@ constexpr double kDiscSize = 440.0;        // px across the cells of the disc
 constexpr double kFont = 13.0;
 constexpr double kBarHeight = 14.0;
 
-Colour wrong_cushions_colour() {
-  return Colour::hex("#c6c6c6");
-}
-Colour obstacle_cell_colour() {
-  return Colour::hex("#7a7a7a");
-}
-Colour no_result_colour() {
-  return Colour::hex("#f0f0f0");
-}
-Colour hatch_colour() {
-  return Colour::hex("#3a3a3a");
-}
-Colour outline_colour() {
-  return Colour::hex("#000000");
-}
+constexpr Colour kWrongCushions = Colour::hex("#c6c6c6");
+constexpr Colour kObstacleCell = Colour::hex("#7a7a7a");
+constexpr Colour kNoResult = Colour::hex("#f0f0f0");
+constexpr Colour kHatch = Colour::hex("#3a3a3a");
+constexpr Colour kOutline = Colour::hex("#000000");
 
 // Viridis (matplotlib) at eleven evenly spaced points.
 constexpr std::array<std::array<int, 3>, 11> kViridis = {{{68, 1, 84},
@@ -102,12 +92,12 @@ struct Cell {
 Colour cell_colour(SpinCellKind kind, double miss, const MissColourScale& scale) {
   switch (kind) {
     case SpinCellKind::distance: return scale.colour(miss);
-    case SpinCellKind::wrong_cushions: return wrong_cushions_colour();
+    case SpinCellKind::wrong_cushions: return kWrongCushions;
     case SpinCellKind::pocketed: return detail::white();
-    case SpinCellKind::obstacle: return obstacle_cell_colour();
-    case SpinCellKind::no_result: return no_result_colour();
+    case SpinCellKind::obstacle: return kObstacleCell;
+    case SpinCellKind::no_result: return kNoResult;
   }
-  return no_result_colour();
+  return kNoResult;
 }
 
 enum class Swatch { landing, wrong_cushions, pocketed, obstacle, no_result, marked, miscue };
@@ -212,11 +202,9 @@ std::vector<detail::LegendEntry> legend_entries(const SpinMapScene& s) {
       const Path square = Path().rect(left, top, size, size);
       switch (w) {
         case Swatch::landing:
-          c.fill_and_stroke(square, viridis(1.0), Pen{outline_colour(), 2.0}, "legend-symbol");
+          c.fill_and_stroke(square, viridis(1.0), Pen{kOutline, 2.0}, "legend-symbol");
           break;
-        case Swatch::wrong_cushions:
-          c.fill(square, wrong_cushions_colour(), "legend-symbol");
-          break;
+        case Swatch::wrong_cushions: c.fill(square, kWrongCushions, "legend-symbol"); break;
         case Swatch::pocketed: {
           c.fill_and_stroke(square, detail::white(), Pen{Colour::hex("#999999"), 0.5},
                             "legend-symbol");
@@ -224,14 +212,13 @@ std::vector<detail::LegendEntry> legend_entries(const SpinMapScene& s) {
           Path hatch;
           for (double k = -size; k < size; k += 5.0)
             hatch.move_to(left + k, top + size).line_to(left + k + size, top);
-          c.stroke(hatch, Pen{hatch_colour(), 1.6}, "");
+          c.stroke(hatch, Pen{kHatch, 1.6}, "");
           c.unclip();
           break;
         }
-        case Swatch::obstacle: c.fill(square, obstacle_cell_colour(), "legend-symbol"); break;
+        case Swatch::obstacle: c.fill(square, kObstacleCell, "legend-symbol"); break;
         case Swatch::no_result:
-          c.fill_and_stroke(square, no_result_colour(), Pen{Colour::hex("#999999"), 0.5},
-                            "legend-symbol");
+          c.fill_and_stroke(square, kNoResult, Pen{Colour::hex("#999999"), 0.5}, "legend-symbol");
           break;
         case Swatch::marked:
           c.stroke(Path().circle(x, y, 0.4 * size), Pen{detail::white(), 4.0}, "");
@@ -297,10 +284,10 @@ TableScene table_scene_of(const SpinMapScene& s, const Layout& l) {
     const SpinCellKind kind = classify(p, problem.limits);
     TableDot dot;
     dot.position = p.final_position;
-    dot.colour = kind == SpinCellKind::pocketed ? hatch_colour()
-                                                : cell_colour(kind, p.miss_distance, l.scale);
+    dot.colour =
+        kind == SpinCellKind::pocketed ? kHatch : cell_colour(kind, p.miss_distance, l.scale);
     dot.radius = p.lands ? 3.5 : 2.6;
-    if (p.lands) dot.outline = outline_colour();
+    if (p.lands) dot.outline = kOutline;
     t.dots.push_back(dot);
   }
   t.dots_legend = "where one spin stops (outlined: it lands)";
@@ -438,7 +425,7 @@ void disc(Canvas& c, const Layout& l, const SpinMapScene& s) {
     const double size = kDiscSize;
     for (double k = -size; k < size; k += 5.0)
       hatch.move_to(d.left + k, d.top + size).line_to(d.left + k + size, d.top);
-    c.stroke(hatch, Pen{hatch_colour(), 1.6}, "hatch");
+    c.stroke(hatch, Pen{kHatch, 1.6}, "hatch");
     c.unclip();
   }
   // The landing region's boundary: edges between a landing spin and one that is not.
@@ -458,7 +445,7 @@ void disc(Canvas& c, const Layout& l, const SpinMapScene& s) {
       if (!lands(row, col + 1)) outline.move_to(b.right, b.top).line_to(b.right, b.bottom);
     }
   if (!outline.empty()) {
-    Pen pen{outline_colour(), 2.2};
+    Pen pen{kOutline, 2.2};
     pen.cap = detail::LineCap::square;
     c.stroke(outline, pen, "landing-outline");
   }

@@ -54,33 +54,15 @@ constexpr double kBaulkLine = 0.737;
 constexpr double kDRadius = 0.292;
 constexpr double kBlackSpot = 0.324;
 
-Colour cloth_colour() {
-  return Colour::hex("#e4efe6");
-}
-Colour grid_colour() {
-  return Colour::hex("#d0e2d4");
-}
-Colour cushion_colour() {
-  return Colour::hex("#5f8f6e");
-}
-Colour rail_colour() {
-  return Colour::hex("#7a5230");
-}
-Colour marking_colour() {
-  return Colour::hex("#a3c2ab");
-}
-Colour diamond_colour() {
-  return Colour::hex("#f3ead2");
-}
-Colour pocket_colour() {
-  return Colour::hex("#111111");
-}
-Colour pocket_rim_colour() {
-  return Colour::hex("#4a3626");
-}
-Colour obstacle_colour() {
-  return Colour::hex("#b5b5b5");
-}
+constexpr Colour kCloth = Colour::hex("#e4efe6");
+constexpr Colour kGrid = Colour::hex("#d0e2d4");
+constexpr Colour kCushion = Colour::hex("#5f8f6e");
+constexpr Colour kRail = Colour::hex("#7a5230");
+constexpr Colour kMarking = Colour::hex("#a3c2ab");
+constexpr Colour kDiamond = Colour::hex("#f3ead2");
+constexpr Colour kPocket = Colour::hex("#111111");
+constexpr Colour kPocketRim = Colour::hex("#4a3626");
+constexpr Colour kObstacle = Colour::hex("#b5b5b5");
 
 // Table frame (m) to the page (px): x to the right, y up.
 struct Frame {
@@ -284,8 +266,8 @@ void draw_target_edge(Canvas& c, double x, double y, double r, const char* role)
 }
 
 void draw_pocket_hole(Canvas& c, double x, double y, double r, const char* role) {
-  c.fill_and_stroke(Path().circle(x, y, r), pocket_colour(),
-                    Pen{pocket_rim_colour(), std::clamp(0.18 * r, 1.2, 3.0)}, role);
+  c.fill_and_stroke(Path().circle(x, y, r), kPocket,
+                    Pen{kPocketRim, std::clamp(0.18 * r, 1.2, 3.0)}, role);
 }
 
 Pen path_pen(Colour colour, double width) {
@@ -378,7 +360,7 @@ std::vector<detail::LegendEntry> legend_entries(const TableScene& scene, const L
                        fmt::format("target zone (r = {:.3g} mm)", 1000.0 * scene.target->radius)});
   if (s.grey_obstacles)
     entries.push_back({[lr](Canvas& c, double x, double y) {
-                         draw_ball(c, x, y, lr, obstacle_colour(), "legend-symbol");
+                         draw_ball(c, x, y, lr, kObstacle, "legend-symbol");
                        },
                        "obstacle ball"});
   if (!scene.scene.pockets.empty())
@@ -493,12 +475,12 @@ void table_bed(Canvas& c, const Layout& l) {
       .line_to(o.left, o.top + corner)
       .arc(o.left + corner, o.top + corner, corner, std::numbers::pi, 1.5 * std::numbers::pi)
       .close();
-  c.fill_and_stroke(rail, rail_colour(), Pen{detail::darker(rail_colour(), 0.4), 1.0}, "rail");
+  c.fill_and_stroke(rail, kRail, Pen{detail::darker(kRail, 0.4), 1.0}, "rail");
   const Box cushion = l.cloth.grown(l.cushion);
-  c.fill(Path().rect(cushion.left, cushion.top, cushion.width(), cushion.height()),
-         cushion_colour(), "cushion");
+  c.fill(Path().rect(cushion.left, cushion.top, cushion.width(), cushion.height()), kCushion,
+         "cushion");
   c.fill_and_stroke(Path().rect(l.cloth.left, l.cloth.top, l.cloth.width(), l.cloth.height()),
-                    cloth_colour(), Pen{detail::darker(cushion_colour(), 0.3), 1.0}, "cloth");
+                    kCloth, Pen{detail::darker(kCushion, 0.3), 1.0}, "cloth");
   Path grid;
   for (double v : l.x_ticks)
     if (v > 0.0 && v < l.length * (1.0 - 1e-9))
@@ -506,7 +488,7 @@ void table_bed(Canvas& c, const Layout& l) {
   for (double v : l.y_ticks)
     if (v > 0.0 && v < l.width * (1.0 - 1e-9))
       grid.move_to(l.cloth.left, l.f.y(v)).line_to(l.cloth.right, l.f.y(v));
-  if (!grid.empty()) c.stroke(grid, Pen{grid_colour(), 1.0}, "grid");
+  if (!grid.empty()) c.stroke(grid, Pen{kGrid, 1.0}, "grid");
 }
 
 // ---------------------------------------------------------------------------
@@ -518,7 +500,7 @@ void snooker_markings(Canvas& c, const Layout& l) {
   const double baulk = kBaulkLine * sx;
   const double d_radius = kDRadius * sy;
   const double mid = 0.5 * l.width;
-  const Pen line{marking_colour(), 1.2};
+  const Pen line{kMarking, 1.2};
   c.stroke(Path().move_to(l.f.x(baulk), l.cloth.top).line_to(l.f.x(baulk), l.cloth.bottom), line,
            "baulk-line");
   // The D: the half circle on the baulk side of the line (page angles, y down).
@@ -534,8 +516,7 @@ void snooker_markings(Canvas& c, const Layout& l) {
       {0.5 * l.length, mid},   {0.75 * l.length, mid},  {l.length - kBlackSpot * sx, mid}};
   const double r = std::clamp(0.006 * l.f.scale, 1.4, 3.0);
   for (const phys::Vec2& s : spots)
-    c.fill(Path().circle(l.f.x(s.x), l.f.y(s.y), r), detail::darker(marking_colour(), 0.25),
-           "spot");
+    c.fill(Path().circle(l.f.x(s.x), l.f.y(s.y), r), detail::darker(kMarking, 0.25), "spot");
 }
 
 void diamonds(Canvas& c, const Layout& l, const phys::Scene& scene) {
@@ -549,8 +530,7 @@ void diamonds(Canvas& c, const Layout& l, const phys::Scene& scene) {
   const auto diamond = [&](double x, double y, bool along_x) {
     const double a = along_x ? half : 0.6 * half;
     const double b = along_x ? 0.6 * half : half;
-    c.fill(Path().polygon({{x - a, y}, {x, y - b}, {x + a, y}, {x, y + b}}), diamond_colour(),
-           "diamond");
+    c.fill(Path().polygon({{x - a, y}, {x, y - b}, {x + a, y}, {x, y + b}}), kDiamond, "diamond");
   };
   for (int k = 1; k < 8; ++k) {
     const double x = k * l.length / 8.0;
@@ -636,7 +616,7 @@ void pockets(Canvas& c, const Layout& l, const phys::Scene& scene) {
               {at.x + b * along.x + reach * m.out.x, at.y + b * along.y + reach * m.out.y},
               {at.x + a * along.x, at.y + a * along.y}};
     }
-    c.fill(Path().polygon(jaws), cloth_colour(), "pocket-jaws");
+    c.fill(Path().polygon(jaws), kCloth, "pocket-jaws");
   }
   c.unclip();
   // The holes, behind the noses and within the table's outer edge.
@@ -653,7 +633,7 @@ void pockets(Canvas& c, const Layout& l, const phys::Scene& scene) {
   for (const phys::Pocket& p : scene.pockets) {
     const Point at = l.f.at(p.centre);
     c.stroke(Path().circle(at.x, at.y, pocket_radius_px(p, l)),
-             Pen{pocket_colour().with_alpha(0.45), 1.0, {2.0, 2.0}}, "pocket-capture");
+             Pen{kPocket.with_alpha(0.45), 1.0, {2.0, 2.0}}, "pocket-capture");
   }
   c.unclip();
 }
@@ -794,7 +774,7 @@ void balls(Canvas& c, const Layout& l, const TableScene& scene,
   for (const phys::Vec2& o : scene.scene.obstacles)
     if (!ball_stands_on(scene, o)) {
       const Point at = l.f.at(o);
-      draw_ball(c, at.x, at.y, l.ball, obstacle_colour(), "ball");
+      draw_ball(c, at.x, at.y, l.ball, kObstacle, "ball");
     }
   for (const DrawnBall& b : scene.balls) {
     const Point at = l.f.at(b.start);

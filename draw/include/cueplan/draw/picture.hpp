@@ -30,7 +30,22 @@ struct Colour {
   double a = 1.0;
 
   // "#rrggbb" (a bad string gives black); `alpha` sets the opacity.
-  static Colour hex(std::string_view rrggbb, double alpha = 1.0);
+  static constexpr Colour hex(std::string_view rrggbb, double alpha = 1.0) {
+    const auto digit = [](char c) {
+      return c >= '0' && c <= '9'   ? c - '0'
+             : c >= 'a' && c <= 'f' ? c - 'a' + 10
+             : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                    : -1;
+    };
+    if (rrggbb.size() != 7 || rrggbb[0] != '#') return {0.0, 0.0, 0.0, alpha};
+    double channel[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < 3; ++i) {
+      const int hi = digit(rrggbb[1 + 2 * i]), lo = digit(rrggbb[2 + 2 * i]);
+      if (hi < 0 || lo < 0) return {0.0, 0.0, 0.0, alpha};
+      channel[i] = (16 * hi + lo) / 255.0;
+    }
+    return {channel[0], channel[1], channel[2], alpha};
+  }
   Colour with_alpha(double alpha) const { return {r, g, b, alpha}; }
   std::string to_hex() const;  // "#rrggbb", opacity left out
 };
