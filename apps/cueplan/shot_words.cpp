@@ -1,5 +1,7 @@
 #include "shot_words.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 
@@ -73,9 +75,8 @@ std::string fixed(const char* pattern, double value) {
 
 std::string tip_offset_words(const phys::Shot& shot) {
   const planner::TipOffset t = planner::tip_offset(shot);
-  return fixed("%.3f", std::abs(t.right)) + " R " + (t.right < 0.0 ? "left" : "right") +
-         " of centre, " + fixed("%.3f", std::abs(t.up)) + " R " + (t.up < 0.0 ? "below" : "above") +
-         " centre";
+  return fmt::format("{:.3f} R {} of centre, {:.3f} R {} centre", std::abs(t.right),
+                     t.right < 0.0 ? "left" : "right", std::abs(t.up), t.up < 0.0 ? "below" : "above");
 }
 
 std::string cushions_allowed(const problems::Limits& limits) {

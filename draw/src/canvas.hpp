@@ -21,7 +21,7 @@ struct Point {
   double x = 0.0, y = 0.0;
 };
 
-// Text made safe inside XML (SVG metadata) and Pango markup: & < > " '.
+// Text made safe as the content of an XML element (SVG metadata) or Pango markup: & < >.
 std::string escape_xml(std::string_view text);
 
 // A path in picture units: lines, cubic Bezier pieces, circular arcs.

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <unordered_map>
 
 #include "canvas.hpp"
 #include "label_placer.hpp"
@@ -98,7 +100,6 @@ struct Layout {
   double y_label_x = 0.0;
   double canvas_width = 0.0, canvas_height = 0.0;
   Shown shown;
-  std::vector<detail::LegendEntry> legend_entries;
   std::optional<detail::Legend> legend;
 };
 
@@ -134,47 +135,50 @@ std::vector<Point> sample_path(const DrawnPath& path, const Frame& f, double spa
   return points;
 }
 
-double distance_to_polyline(Point p, const std::vector<Point>& line) {
-  double best = INFINITY;
-  for (size_t i = 1; i < line.size(); ++i) {
-    const Point a = line[i - 1], b = line[i];
-    const double dx = b.x - a.x, dy = b.y - a.y;
-    const double len2 = dx * dx + dy * dy;
-    const double t =
-        len2 > 0.0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy));
+// The sample points of the paths placed so far, in square cells of `near` px, to ask
+// quickly whether a point lies within `near` of any of them.
+class NearPoints {
+ public:
+  explicit NearPoints(double near) : near_(near) {}
+  void add(const std::vector<Point>& points) {
+    for (const Point& p : points) cells_[key(cell(p.x), cell(p.y))].push_back(p);
   }
-  if (line.size() == 1) best = std::hypot(p.x - line[0].x, p.y - line[0].y);
-  return best;
-}
-
-// The fraction of `samples` that lie within `near` px of any earlier path.
-double retraced_fraction(const std::vector<Point>& samples, const std::vector<PlacedPath>& earlier,
-                         double near) {
-  if (samples.empty() || earlier.empty()) return 0.0;
-  int close = 0;
-  for (const Point& p : samples) {
-    for (const PlacedPath& e : earlier) {
-      if (distance_to_polyline(p, e.samples) < near) {
-        ++close;
-        break;
+  bool near(Point p) const {
+    const int64_t cx = cell(p.x), cy = cell(p.y);
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        const auto found = cells_.find(key(cx + dx, cy + dy));
+        if (found == cells_.end()) continue;
+        for (const Point& q : found->second)
+          if (std::hypot(p.x - q.x, p.y - q.y) < near_) return true;
       }
-    }
+    return false;
   }
-  return static_cast<double>(close) / static_cast<double>(samples.size());
-}
+  // The fraction of `samples` within `near` of a point already added.
+  double fraction_near(const std::vector<Point>& samples) const {
+    if (samples.empty() || cells_.empty()) return 0.0;
+    const auto close = std::count_if(samples.begin(), samples.end(), [&](Point p) { return near(p); });
+    return static_cast<double>(close) / static_cast<double>(samples.size());
+  }
+
+ private:
+  int64_t cell(double v) const { return static_cast<int64_t>(std::floor(v / near_)); }
+  static int64_t key(int64_t x, int64_t y) { return x * 1'000'003 + y; }
+  double near_;
+  std::unordered_map<int64_t, std::vector<Point>> cells_;
+};
 
 // Where each non-faint path is drawn: a path that retraces an earlier one over more
 // than a fifth of its length is moved sideways (perpendicular to its first direction)
 // by the smallest offset that clears it.
 std::vector<PlacedPath> place_paths(const TableScene& scene, const Layout& l, double line_width) {
   std::vector<PlacedPath> placed;
-  const double near = 1.5 * line_width + 1.0;
+  NearPoints drawn(1.5 * line_width + 1.0);
   for (const DrawnBall& ball : scene.balls) {
     for (const DrawnPath& path : ball.paths) {
       if (path.faint) continue;
       PlacedPath p{&ball, &path, {0.0, 0.0}, sample_path(path, l.f, 3.0)};
-      if (retraced_fraction(p.samples, placed, near) > 0.2) {
+      if (drawn.fraction_near(p.samples) > 0.2) {
         // The first direction of travel, on the page.
         Point dir{1.0, 0.0};
         for (const phys::PathSegment& s : path.segments) {
@@ -193,7 +197,7 @@ std::vector<PlacedPath> place_paths(const TableScene& scene, const Layout& l, do
             const double d = side * k * 2.5 * line_width;
             std::vector<Point> moved = p.samples;
             for (Point& q : moved) q = {q.x + d * normal.x, q.y + d * normal.y};
-            const double fraction = retraced_fraction(moved, placed, near);
+            const double fraction = drawn.fraction_near(moved);
             if (fraction < best_fraction) {
               best_fraction = fraction;
               best_offset = {d * normal.x, d * normal.y};
@@ -204,6 +208,7 @@ std::vector<PlacedPath> place_paths(const TableScene& scene, const Layout& l, do
         p.offset = best_offset;
         p.samples = std::move(best_samples);
       }
+      drawn.add(p.samples);
       placed.push_back(std::move(p));
     }
   }
