@@ -713,7 +713,10 @@ void direction_arrows(Canvas& c, const DrawnPath& path, const Frame& f, Point of
     }
     if (length[kSamples] < kMinLength) continue;
     int i = 1;
-    while (i < kSamples && length[i] < 0.5 * length[kSamples]) ++i;
+    // A path moved beside an earlier one carries its arrows a third of the way along,
+    // clear of the earlier path's, which sit halfway.
+    const double along = offset.x == 0.0 && offset.y == 0.0 ? 0.5 : 0.3;
+    while (i < kSamples && length[i] < along * length[kSamples]) ++i;
     const double t = s.t0 + dt * i / kSamples;
     const phys::Vec2 tip = s.at(t);
     const double vx = s.v0.x + s.accel.x * (t - s.t0);
