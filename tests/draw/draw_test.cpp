@@ -692,6 +692,8 @@ TEST(SpinMap, OneCellAndOneRestDotPerSpin) {
   EXPECT_EQ(count(p, "planned-spin"), 1u);
   EXPECT_EQ(count(p, "colour-bar"), 1u);
   EXPECT_EQ(count(p, "pocket"), 6u) << "the table panel";
+  EXPECT_LE(p.width(), kMaxCanvasSide);
+  EXPECT_LE(p.height(), kMaxCanvasSide);
   EXPECT_EQ(count(p, "landing-outline"), c.map.landing > 0 ? 1u : 0u);
   expect_text_on_canvas(p, "spin map");
 }

@@ -115,8 +115,9 @@ struct EncodeOptions {
 
 Encoded encode(const Picture& picture, Format format, const EncodeOptions& options = {});
 
-// The largest canvas any builder makes, in picture units per side: extreme scenes (a
-// 1e9 m table, a 6 cm one) are scaled to fit, never drawn larger.
+// The largest canvas a table or a spin map gets, in picture units per side, whatever the
+// scene: extreme tables (1e9 m, 6 cm) are scaled to fit, never drawn larger. (A plot is
+// as wide as its panels.)
 inline constexpr double kMaxCanvasSide = 2400.0;
 
 }  // namespace cueplan::draw
