@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "cueplan/draw/table.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "exit_codes.hpp"
@@ -16,7 +17,6 @@
 #include "shot_report.hpp"
 #include "shot_words.hpp"
 #include "simulate_batch.hpp"
-#include "table_drawing.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -274,13 +274,10 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
 namespace {
 
 // The title and caption of the drawing: the shot, then what came of it.
-TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
-                        const phys::SimulationOptions& options, const phys::ShotResult& r) {
-  TableDrawing d;
-  d.scene = problem.scene;
-  d.cue_ball = problem.cue_ball;
-  d.target = TargetZone{problem.target, problem.tolerance};
-  d.paths.push_back({r.path, r.events, false});
+draw::TableScene drawing_of(const prob::Problem& problem, const phys::Shot& shot,
+                            const phys::SimulationOptions& options, const phys::ShotResult& r) {
+  draw::TableScene d = draw::problem_table(problem);
+  d.balls.front().paths.push_back({r.path, r.events, false});
 
   std::string buf;
   buf = fmt::format("{}: V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g}",
@@ -395,8 +392,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
           ->group(output);
   auto* svg = c.add_option("--svg", args_.svg_file,
                            "Also draw the table, pockets, obstacles, target zone and the ball's "
-                           "path to scale, coloured by sliding and rolling, as an SVG file")
-                  ->type_name("FILE.svg")
+                           "path to scale, coloured by sliding and rolling, as a picture: SVG, "
+                           "PNG or PDF by the file's extension")
+                  ->type_name("FILE.svg|.png|.pdf")
                   ->group(output);
   auto* batch =
       c.add_option("--batch", args_.batch_file,
@@ -509,7 +507,7 @@ std::string SimulateCommand::read_inputs(Inputs* inputs) const {
     return why;
   }
   if (!args_.svg_file.empty())
-    if (std::string why = check_output_file(args_.svg_file); !why.empty()) return "--svg: " + why;
+    if (std::string why = check_picture_file("--svg", args_.svg_file); !why.empty()) return why;
   inputs->loaded = prob::load_problem(args_.problem_file);
   return inputs->loaded.error;
 }
@@ -545,8 +543,8 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
 
   // The drawing first: if it cannot be written, nothing else is printed.
   if (!args_.svg_file.empty()) {
-    const std::string svg = render_table_svg(drawing_of(problem, shot, options, result));
-    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+    const draw::Picture picture = draw::table_picture(drawing_of(problem, shot, options, result));
+    if (std::string why = write_picture(args_.svg_file, picture); !why.empty())
       return usage("--svg: " + why);
   }
   std::optional<SimulatedSuccess> success;

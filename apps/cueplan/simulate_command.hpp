@@ -1,6 +1,6 @@
 // `cueplan simulate PROBLEM`: one cue-ball shot (or a CSV batch of them) on a problem
 // file's scene through physics::simulate, reported as text, JSON or CSV against the
-// problem's target, and drawn to scale as SVG.
+// problem's target, and drawn to scale (SVG, PNG or PDF).
 #pragma once
 
 #include <cmath>

@@ -10,6 +10,7 @@
 #include <ostream>
 #include <vector>
 
+#include "cueplan/draw/table.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
@@ -17,7 +18,6 @@
 #include "output_file.hpp"
 #include "shot_report.hpp"
 #include "shot_words.hpp"
-#include "table_drawing.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -32,10 +32,8 @@ constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue st
 
 // Tip offsets as fractions of R, with their direction in words.
 std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) {
-  const plan::TipOffset t = plan::tip_offset(shot);
-  return fmt::format("{:.3f}", std::abs(t.right)) + " R " + (t.right < 0.0 ? "left" : "right") +
-         " of centre, " + fmt::format("{:.3f}", std::abs(t.up)) + " R " + (t.up < 0.0 ? "below" : "above") +
-         " centre (fractions of the ball radius; the spin "
+  return tip_offset_words(shot) +
+         " (fractions of the ball radius; the spin "
          "limit is " +
          fmt::format("{:.3g}", limits.spin_max / kSpinPerTipOffset) + " R)";
 }
@@ -220,9 +218,9 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
 namespace {
 
 // ---------------------------------------------------------------------------
-// SVG: the best path in full, the alternatives faint.
+// The drawing: the best path in full, the alternatives faint.
 
-DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
+draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
                   const phys::SimulationOptions& search, bool faint) {
   // Simulated as the reported outcome was: with the method that gave it.
   phys::SimulationOptions options = search;
@@ -236,16 +234,13 @@ DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
   return {r.path, r.events, faint};
 }
 
-TableDrawing drawing_of(const prob::Problem& problem, const plan::PlannerOptions& options,
-                        const plan::PlanResult& r) {
+draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOptions& options,
+                            const plan::PlanResult& r) {
   const plan::PlannedShot& b = r.best;
-  TableDrawing d;
-  d.scene = problem.scene;
-  d.cue_ball = problem.cue_ball;
-  d.target = TargetZone{problem.target, problem.tolerance};
+  draw::TableScene d = draw::problem_table(problem);
   for (const plan::PlannedShot& a : r.alternatives)
-    d.paths.push_back(path_of(problem, a, options.simulation, true));
-  d.paths.push_back(path_of(problem, b, options.simulation, false));
+    d.balls.front().paths.push_back(path_of(problem, a, options.simulation, true));
+  d.balls.front().paths.push_back(path_of(problem, b, options.simulation, false));
   if (!r.alternatives.empty())
     d.faint_legend = std::to_string(r.alternatives.size()) +
                      (r.alternatives.size() == 1 ? " alternative stroke" : " alternative strokes");
@@ -254,14 +249,13 @@ TableDrawing drawing_of(const prob::Problem& problem, const plan::PlannerOptions
   buf = fmt::format("{}: {}, aim {:.4g}\u00b0", problem.name.c_str(),
                 plan::describe_stroke(b.shot).c_str(), b.shot.aim_deg);
   d.title = buf;
-  buf = fmt::format("{}. V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g} (tip {:.3f} R right, "
-                "{:.3f} R up).",
+  buf = fmt::format("{}. V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g} (tip {}).",
                 r.status == plan::PlanStatus::solved ? "Solved"
                 : r.status == plan::PlanStatus::no_solution_found
                     ? "No solution found; the nearest stroke"
                     : "Budget exhausted; the best stroke",
                 b.shot.speed, b.shot.aim_deg, b.shot.topspin_k, b.shot.sidespin_k,
-                plan::tip_offset(b.shot).right, plan::tip_offset(b.shot).up);
+                tip_offset_words(b.shot).c_str());
   d.caption.push_back(buf);
   std::string outcome;
   if (std::isfinite(b.miss_distance)) {
@@ -313,9 +307,9 @@ SolveCommand::SolveCommand(CLI::App& parent) {
              "alternatives (same shape), constraints, ...")
       ->group(output);
   c.add_option("--svg", args_.svg_file,
-               "Also draw the plan as an SVG file: the table, the target zone, the best stroke's "
-               "path and the alternatives' paths dimmed")
-      ->type_name("FILE.svg")
+               "Also draw the plan: the table, the target zone, the best stroke's path and the "
+               "alternatives' paths dimmed; SVG, PNG or PDF by the file's extension")
+      ->type_name("FILE.svg|.png|.pdf")
       ->group(output);
 
   c.footer(
@@ -343,7 +337,7 @@ std::string SolveCommand::read_inputs(Inputs* inputs) const {
       !why.empty())
     return why;
   if (!args_.svg_file.empty())
-    if (std::string why = check_output_file(args_.svg_file); !why.empty()) return "--svg: " + why;
+    if (std::string why = check_picture_file("--svg", args_.svg_file); !why.empty()) return why;
   inputs->loaded = prob::load_problem(args_.problem_file);
   return inputs->loaded.error;
 }
@@ -387,8 +381,8 @@ int SolveCommand::run(std::ostream& out, std::ostream& err) const {
 
   // The drawing first: if it cannot be written, nothing else is printed.
   if (!args_.svg_file.empty()) {
-    const std::string svg = render_table_svg(drawing_of(problem, options, result));
-    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+    const draw::Picture picture = draw::table_picture(drawing_of(problem, options, result));
+    if (std::string why = write_picture(args_.svg_file, picture); !why.empty())
       return usage("--svg: " + why);
   }
   if (args_.json)
