@@ -65,7 +65,8 @@ constexpr int kMinContinueEvaluations = 40;  // and a continued one this much
 constexpr int kVerifyEvaluations = 200;
 constexpr int kSimplifyEvaluations = 150;  // polish of a side variant, held side
 constexpr double kSearchTimeShare = 0.75;
-constexpr size_t kFirstRound = 50;         // noise draws every candidate is sampled on  // of max_time_s, for the global stage and the polish
+constexpr size_t kFirstRound = 50;         // noise draws every candidate is sampled on
+constexpr double kSameLanding = 1e-3;      // of the tolerance: side that moved nothing  // of max_time_s, for the global stage and the polish
 // A polish that ran out of evaluations counts as converged when it has stalled: over
 // the last half of its evaluations (at least kStallEvaluations) its best score fell by
 // no more than kProgress (m), or so slowly that kHorizon times as many evaluations
@@ -479,49 +480,70 @@ class Planning {
     finals_.clear();
     for (auto& [family, f] : by_family) finals_.push_back(std::move(f));
     std::stable_sort(finals_.begin(), finals_.end(), nominally_better);
-    for (size_t i = 0; i < finals_.size(); ++i) finals_[i].id = static_cast<int>(i);
+    for (Final& f : finals_) f.id = next_id_++;
   }
 
-  // 5. Side that may do nothing: every solved shot with side is tried with no side
-  // and with half its side - as it is, and if it then misses, polished with that side
-  // held (speed, aim and topspin free). The variants that land join the candidates;
-  // the rank stage decides whether the side earned its place.
+  // 5. Side that may do nothing: every solved shot with side is tried with no side -
+  // as it is, and if it then misses, polished with the side held at zero (speed, aim
+  // and topspin free). Where the side changed nothing at all (the stroke without it
+  // stops within kSameLanding of the same place by the same cushions: side spent
+  // before the first cushion, or no cushion at all), it replaces the shot at once;
+  // otherwise the shot is also tried with half its side, and the variants that land
+  // join the candidates for the rank stage to decide whether the side earned its place.
   void simplify_stage(const Task& task) {
     if (options_.stop_at_first_solution) return;
-    struct Job {
-      size_t parent;
-      double side;
-    };
-    std::vector<Job> jobs;
+    std::vector<size_t> sided;
     for (size_t i = 0; i < finals_.size(); ++i) {
       const PlannedShot& p = finals_[i].shot;
-      if (!p.solves || std::abs(p.shot.sidespin_k) < detail::kCentreK) continue;
-      jobs.push_back({i, 0.0});
-      if (std::abs(0.5 * p.shot.sidespin_k) >= detail::kCentreK)
-        jobs.push_back({i, 0.5 * p.shot.sidespin_k});
+      if (p.solves && std::abs(p.shot.sidespin_k) >= detail::kCentreK) sided.push_back(i);
     }
-    if (jobs.empty() || seconds_left() <= 0.0) return;
-    std::vector<std::pair<Final, int>> done(jobs.size());
+    const std::vector<Final> plain = variants(task, sided, 0.0, 0);
+    std::vector<size_t> halve;
+    std::set<int> replaced;
+    for (size_t j = 0; j < plain.size(); ++j) {
+      const Final& parent = finals_[sided[j]];
+      const Final& v = plain[j];
+      if (v.shot.solves && v.shot.route == parent.shot.route &&
+          std::hypot(v.shot.final_position.x - parent.shot.final_position.x,
+                     v.shot.final_position.y - parent.shot.final_position.y) <=
+              kSameLanding * problem_.tolerance)
+        replaced.insert(parent.id);
+      else if (std::abs(0.5 * parent.shot.shot.sidespin_k) >= detail::kCentreK)
+        halve.push_back(sided[j]);
+    }
+    const std::vector<Final> half = variants(task, halve, 0.5, plain.size());
+    std::erase_if(finals_, [&](const Final& f) { return replaced.count(f.id) > 0; });
+    for (const std::vector<Final>* found : {&plain, &half})
+      for (const Final& f : *found) {
+        if (!f.shot.solves) continue;
+        finals_.push_back(f);
+        finals_.back().id = next_id_++;
+      }
+  }
+
+  // The shots finals_[parents[j]] with `side_factor` times their side, each as it is or,
+  // when it misses, polished with that side held; in parallel, each polish on its own
+  // stream (from `stream_offset`). Each variant's parent is the shot's id.
+  std::vector<Final> variants(const Task& task, const std::vector<size_t>& parents,
+                              double side_factor, size_t stream_offset) {
+    std::vector<Final> out(parents.size());
+    if (parents.empty() || seconds_left() <= 0.0) return {};
+    std::vector<int> simulations(parents.size(), 0);
     physics::parallel_for(
-        jobs.size(), physics::thread_count(options_.threads, static_cast<int>(jobs.size())),
+        parents.size(), physics::thread_count(options_.threads, static_cast<int>(parents.size())),
         [&](size_t j, unsigned) {
-          int simulations = 0;
-          physics::Shot shot = finals_[jobs[j].parent].shot.shot;
-          shot.sidespin_k = jobs[j].side;
-          Final f = describe_shot(task, shot, &simulations);
+          physics::Shot shot = finals_[parents[j]].shot.shot;
+          shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
+          Final f = describe_shot(task, shot, &simulations[j]);
           if (!f.shot.solves && seconds_left() > 0.0)
-            f = polished_and_described(task, shot, kSimplifyEvaluations, kSimplifyStream + j,
-                                       jobs[j].side, &simulations);
-          done[j] = {std::move(f), simulations};
+            f = polished_and_described(task, shot, kSimplifyEvaluations,
+                                       kSimplifyStream + stream_offset + j, shot.sidespin_k,
+                                       &simulations[j]);
+          f.parent = finals_[parents[j]].id;
+          out[j] = std::move(f);
         });
-    for (size_t j = 0; j < jobs.size(); ++j) {
-      result_.evaluations += done[j].second;
-      Final& f = done[j].first;
-      if (!f.shot.solves) continue;
-      f.id = static_cast<int>(finals_.size());
-      f.parent = finals_[jobs[j].parent].id;
-      finals_.push_back(std::move(f));
-    }
+    for (int n : simulations) result_.evaluations += n;
+    return out;
   }
 
   // The success of each of `shots` on the common noise draws, raced: all are sampled
@@ -755,6 +777,7 @@ class Planning {
   bool timed_out_ = false;
   bool out_of_evaluations_ = false;
   std::vector<Final> finals_;
+  int next_id_ = 0;  // Final::id of the next shot described for ranking
   detail::NoiseStream draws_{options_.seed};  // the common draws of every success estimate
   bool any_solved_ = false;
   int robust_improved_ = 0;
