@@ -43,10 +43,10 @@ struct SimulateArgs {
   bool json = false;
   std::string svg_file;  // empty: no drawing
   std::string batch_file;
-  int threads = 0;  // batch (and table build) threads; 0: one per core
-  int samples = 0;      // --samples: noisy strokes for the success estimate; 0: none
-  double noise = 1.0;   // --noise: scale of planner::NoiseModel's deviations
-  uint64_t seed = 1;    // --seed: of the noisy strokes
+  int threads = 0;     // batch (and table build) threads; 0: one per core
+  int samples = 0;     // --samples: noisy strokes for the success estimate; 0: none
+  double noise = 1.0;  // --noise: scale of planner::NoiseModel's deviations
+  uint64_t seed = 1;   // --seed: of the noisy strokes
 };
 
 class SimulateCommand {

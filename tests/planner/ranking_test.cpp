@@ -1,6 +1,8 @@
 // The statistics the planner ranks strokes by: Wilson intervals against published
 // values, McNemar's exact test against a binomial sum computed another way, and the
 // coach's order on outcomes built by hand.
+#include "ranking.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <vector>
 
 #include "cueplan/planner/planner.hpp"
-#include "ranking.hpp"
 #include "robustness.hpp"
 
 namespace cueplan::planner {
@@ -159,7 +160,8 @@ TEST(CoachOrderTest, TheFirstStrokesIntervalIsNeverBelowAnother) {
     std::vector<std::vector<uint8_t>> sets;
     const int count = 2 + static_cast<int>(rng() % 6);
     for (int i = 0; i < count; ++i)
-      sets.push_back(outcomes(static_cast<int>(rng() % (n / 3 + 1)), n, static_cast<int>(rng() % n)));
+      sets.push_back(
+          outcomes(static_cast<int>(rng() % (n / 3 + 1)), n, static_cast<int>(rng() % n)));
     std::vector<detail::RankItem> items;
     for (const auto& s : sets) items.push_back(item(s, static_cast<double>(rng() % 1000) / 500.0));
     const std::vector<size_t> order = detail::coach_order(items);
