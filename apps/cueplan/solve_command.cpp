@@ -375,6 +375,11 @@ int SolveCommand::run(std::ostream& out, std::ostream& err) const {
     const double spent =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     budgeted.max_time_s = std::max(1e-6, options.max_time_s - spent);
+    if (spent > 0.5 * options.max_time_s)
+      err << kCommandName << ": reading the problem and loading the impact table took "
+          << fmt::format("{:.3g} s of the {:.3g} s --max-time budget; the plan has {:.3g} s",
+                         spent, options.max_time_s, budgeted.max_time_s)
+          << '\n';
   }
   const plan::PlanResult result = plan::plan(problem, budgeted);
   if (result.status == plan::PlanStatus::invalid_input) return usage(result.message);

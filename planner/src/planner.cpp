@@ -19,8 +19,9 @@
 //   8. report   - status and a sentence a coach can read.
 //
 // One deadline bounds every stage; the search (global and polish) ends by
-// kSearchTimeShare of it, so that the later stages have time left when the clock,
-// not the evaluation budget, ends the search.
+// kSearchTimeShare of it and the exact verification and side variants by
+// kRefineTimeShare, so that the Monte Carlo has time left when the clock, not the
+// evaluation budget, ends the search.
 #include <fmt/format.h>
 #include <nlopt.h>
 
@@ -64,8 +65,10 @@ constexpr int kMinPolishEvaluations = 100;  // a new polish needs this much budg
 constexpr int kMinContinueEvaluations = 40;  // and a continued one this much
 constexpr int kVerifyEvaluations = 200;
 constexpr int kSimplifyEvaluations = 150;  // polish of a side variant, held side
-constexpr double kSearchTimeShare = 0.75;
-constexpr size_t kFirstRound = 50;         // noise draws every candidate is sampled on
+constexpr double kSearchTimeShare = 0.75;  // of max_time_s: the global stage and the polish
+constexpr double kRefineTimeShare = 0.9;   // and the exact verification and side variants
+constexpr size_t kOpeningRound = 10;  // noise draws every candidate is sampled on first,
+constexpr size_t kFirstRound = 50;    // then on these before the race may drop any
 constexpr double kSameLanding = 1e-3;      // of the tolerance: side that moved nothing  // of max_time_s, for the global stage and the polish
 // A polish that ran out of evaluations counts as converged when it has stalled: over
 // the last half of its evaluations (at least kStallEvaluations) its best score fell by
@@ -245,7 +248,8 @@ class Planning {
   Planning(const problems::Problem& problem, const PlannerOptions& options)
       : problem_(problem), options_(options), started_(Clock::now()),
         deadline_(after(started_, options.max_time_s)),
-        search_deadline_(after(started_, kSearchTimeShare * options.max_time_s)) {}
+        search_deadline_(after(started_, kSearchTimeShare * options.max_time_s)),
+        refine_deadline_(after(started_, kRefineTimeShare * options.max_time_s)) {}
 
   PlanResult run() {
     if (check()) {
@@ -271,6 +275,9 @@ class Planning {
   }
   double search_seconds_left() const {
     return std::chrono::duration<double>(search_deadline_ - Clock::now()).count();
+  }
+  double refine_seconds_left() const {
+    return std::chrono::duration<double>(refine_deadline_ - Clock::now()).count();
   }
 
   // 1. The options, then the problem; nothing else checks them again.
@@ -439,12 +446,12 @@ class Planning {
   Final polished_and_described(const Task& task, const physics::Shot& shot, int max_evaluations,
                                uint64_t stream, std::optional<double> held, int* simulations) const {
     const Polish p = polish(task, options_, search_sim_, shot, max_evaluations,
-                            std::max(1e-6, seconds_left()), stream, held);
+                            std::max(1e-6, refine_seconds_left()), stream, held);
     *simulations += p.evaluations;
     Final f = describe_shot(task, p.best.shot, simulations);
-    if (verify_ && !f.shot.solves && p.best.score <= problem_.tolerance && seconds_left() > 0.0) {
+    if (verify_ && !f.shot.solves && p.best.score <= problem_.tolerance && refine_seconds_left() > 0.0) {
       const Polish again = polish(task, options_, exact_, p.best.shot, kVerifyEvaluations,
-                                  seconds_left(), stream + kVerifyStream, held);
+                                  refine_seconds_left(), stream + kVerifyStream, held);
       *simulations += again.evaluations;
       if (again.best.score < f.score) f = describe_shot(task, again.best.shot, simulations);
     }
@@ -463,9 +470,9 @@ class Planning {
       const physics::Shot shot = polished_[i].best.shot;
       Final f = described(task, shot);
       if (verify_ && !f.shot.solves && polished_[i].best.score <= problem_.tolerance &&
-          seconds_left() > 0.0) {
+          refine_seconds_left() > 0.0) {
         const Polish again = polish(task, options_, exact_, shot, kVerifyEvaluations,
-                                    seconds_left(), kVerifyStream + i);
+                                    refine_seconds_left(), kVerifyStream + i);
         result_.evaluations += again.evaluations;
         if (again.best.score < f.score) f = described(task, again.best.shot);
       }
@@ -527,7 +534,7 @@ class Planning {
   std::vector<Final> variants(const Task& task, const std::vector<size_t>& parents,
                               double side_factor, size_t stream_offset) {
     std::vector<Final> out(parents.size());
-    if (parents.empty() || seconds_left() <= 0.0) return {};
+    if (parents.empty() || refine_seconds_left() <= 0.0) return {};
     std::vector<int> simulations(parents.size(), 0);
     physics::parallel_for(
         parents.size(), physics::thread_count(options_.threads, static_cast<int>(parents.size())),
@@ -535,7 +542,7 @@ class Planning {
           physics::Shot shot = finals_[parents[j]].shot.shot;
           shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
           Final f = describe_shot(task, shot, &simulations[j]);
-          if (!f.shot.solves && seconds_left() > 0.0)
+          if (!f.shot.solves && refine_seconds_left() > 0.0)
             f = polished_and_described(task, shot, kSimplifyEvaluations,
                                        kSimplifyStream + stream_offset + j, shot.sidespin_k,
                                        &simulations[j]);
@@ -547,7 +554,8 @@ class Planning {
   }
 
   // The success of each of `shots` on the common noise draws, raced: all are sampled
-  // on the first kFirstRound draws, then, doubling the draws each round up to
+  // on the first kOpeningRound draws (so that a deadline leaves none without any), then
+  // on the first kFirstRound, then, doubling the draws each round up to
   // robustness_samples, only those the samples cannot yet tell are worse than the
   // leader (McNemar's test, ranking.hpp). A shot dropped early keeps its shorter
   // sample (its Estimate says how many). Each round runs in parallel; the simulations
@@ -556,7 +564,8 @@ class Planning {
     const size_t samples = static_cast<size_t>(options_.robustness_samples);
     if (samples == 0 || shots.empty()) return;
     std::vector<Final*> alive = shots;
-    for (size_t n = std::min(samples, kFirstRound);; n = std::min(samples, 2 * n)) {
+    for (size_t n = std::min(samples, kOpeningRound);;
+         n = std::min(samples, n < kFirstRound ? kFirstRound : 2 * n)) {
       draws_.grow_to(n, deadline_);
       const std::span<const detail::NoiseDraw> draws(draws_.draws().data(),
                                                      std::min(n, draws_.draws().size()));
@@ -576,6 +585,7 @@ class Planning {
         f.shot.success_probability = f.sampled.success.both.p;
       }
       if (n == samples || draws.size() < n || Clock::now() >= deadline_) break;
+      if (n < kFirstRound) continue;  // too few draws to tell strokes apart
       const Final* leader = alive.front();
       for (const Final* f : alive)
         if (f->sampled.success.both.p > leader->sampled.success.both.p) leader = f;
@@ -765,6 +775,7 @@ class Planning {
   const Clock::time_point started_;
   const Clock::time_point deadline_;
   const Clock::time_point search_deadline_;
+  const Clock::time_point refine_deadline_;
   PlanResult result_;
   physics::SimulationOptions sim_;         // the search's simulation, without paths
   physics::SimulationOptions search_sim_;  // the same with the search's event cap
