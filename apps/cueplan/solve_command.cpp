@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -44,11 +46,23 @@ std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) 
          "): " + (inside ? "inside the target zone" : "outside the target zone");
 }
 
-std::string success_text(const plan::PlannerOptions& options, double probability) {
+std::string success_text(const plan::PlannerOptions& options, const plan::Success& success) {
   if (options.robustness_samples == 0) return "not estimated (--samples 0)";
-  return fmt::format("{:.1f} %", 100.0 * probability) + " of " +
-         std::to_string(options.robustness_samples) +
-         " noisy strokes stop in the zone (noise: " + noise_text(options.noise) + ")";
+  const plan::Estimate& e = success.both;
+  std::string text = estimate_text(e) + " of " + std::to_string(e.samples) +
+                     " noisy strokes succeed (noise: " + noise_text(options.noise) + ")";
+  if (e.samples < options.robustness_samples)
+    text += fmt::format("; cut short at {} of {} strokes by the time budget or by the "
+                        "ranking, which stops sampling strokes that are measurably worse",
+                        e.samples, options.robustness_samples);
+  return text;
+}
+
+// "yes" when the stroke meets every condition and some noisy stroke succeeded too;
+// "exact" when it lands only as struck, no noisy stroke having succeeded.
+const char* solves_text(const plan::PlannedShot& p) {
+  if (!p.solves) return "no";
+  return p.success.both.samples > 0 && p.success.both.successes == 0 ? "exact" : "yes";
 }
 
 // ---------------------------------------------------------------------------
@@ -77,7 +91,7 @@ void write_text(std::ostream& out, const prob::Problem& problem,
   line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
                      ", tolerance " + number(problem.tolerance, "m"));
   line("miss distance", miss_text(problem, b));
-  line("success", success_text(options, b.success_probability));
+  line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
   line("family", b.family);
   const std::vector<ConstraintRow> rows = constraints(problem, b, options.enforce_rigid_limit);
@@ -109,24 +123,33 @@ void write_text(std::ostream& out, const prob::Problem& problem,
                                                     " (other families, best first)");
   if (r.alternatives.empty()) return;
   std::string buf;
-  buf = fmt::format("  {:>2} {:>8} {:>10} {:>7} {:>7} {:>10} {:>8}  {:<6} {:<28} {}", "#", "V (m/s)",
-                "aim (deg)", "k_T", "k_S", "miss (mm)", "success", "solves", "route", "stroke");
+  buf = fmt::format("  {:>2} {:>8} {:>10} {:>7} {:>7} {:>10} {:>15}  {:<6} {:<28} {}", "#",
+                    "V (m/s)", "aim (deg)", "k_T", "k_S", "miss (mm)", "success (95 %)", "solves",
+                    "route", "stroke");
   out << buf << '\n';
   for (size_t i = 0; i < r.alternatives.size(); ++i) {
     const plan::PlannedShot& a = r.alternatives[i];
     const std::string miss =
         std::isfinite(a.miss_distance) ? fmt::format("{:.3g}", 1000.0 * a.miss_distance) : "-";
+    const plan::Estimate& e = a.success.both;
     const std::string success =
-        options.robustness_samples == 0 ? "-" : fmt::format("{:.1f} %", 100.0 * a.success_probability);
+        e.samples == 0 ? "-"
+                       : fmt::format("{:.1f} % ({:.0f}-{:.0f})", 100.0 * e.p, 100.0 * e.low,
+                                     100.0 * e.high);
     std::string route = route_text(problem.scene, a.route);
     if (a.outcome != phys::ShotStatus::rest)
       route += std::string(", ") + phys::to_string(a.outcome);
-    buf = fmt::format("  {:2} {:8.4f} {:10.3f} {:7.3f} {:7.3f} {:>10} {:>8}  {:<6} {:<28} {}", i + 1,
-                  a.shot.speed, a.shot.aim_deg, a.shot.topspin_k, a.shot.sidespin_k, miss.c_str(),
-                  success.c_str(), a.solves ? "yes" : "no", route.c_str(),
-                  plan::describe_stroke(a.shot).c_str());
+    buf = fmt::format("  {:2} {:8.4f} {:10.3f} {:7.3f} {:7.3f} {:>10} {:>15}  {:<6} {:<28} {}",
+                      i + 1, a.shot.speed, a.shot.aim_deg, a.shot.topspin_k, a.shot.sidespin_k,
+                      miss, success, solves_text(a), route, plan::describe_stroke(a.shot));
     out << buf << '\n';
   }
+  for (const plan::PlannedShot& a : r.alternatives)
+    if (std::string(solves_text(a)) == "exact") {
+      out << "  (solves exact: the stroke lands as given, but none of its noisy strokes "
+             "succeeded)\n";
+      break;
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -182,7 +205,10 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
                 {"tip_offset", "d / R, the cue tip's offset from centre (k = 2.5 d / R)"},
                 {"final_position", "m"},
                 {"miss_distance", "m"},
-                {"success_probability", "fraction of noisy strokes, 0..1"},
+                {"success_probability", "fraction of noisy strokes, 0..1 (= success.both.p)"},
+                {"success",
+                 "fractions of noisy strokes, 0..1: p with its 95 % Wilson interval [low, high] "
+                 "over `samples` strokes; position is given the pot (all strokes without one)"},
                 {"time_s", "s"},
                 {"max_cushion_normal_speed", "m/s"},
                 {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"}};
@@ -277,7 +303,8 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   c.add_flag("--json", args_.json,
              "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
              "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
-             "evaluations, time_s, alternatives (same shape), constraints, ...")
+             "success {position, both: {p, low, high, samples}}, evaluations, time_s, "
+             "alternatives (same shape), constraints, ...")
       ->group(output);
   c.add_option("--svg", args_.svg_file,
                "Also draw the plan: the table, the target zone, the best stroke's path and the "
@@ -322,6 +349,7 @@ int SolveCommand::validate(std::ostream& err) const {
 }
 
 int SolveCommand::run(std::ostream& out, std::ostream& err) const {
+  const auto started = std::chrono::steady_clock::now();
   const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
 
   Inputs inputs;
@@ -331,15 +359,29 @@ int SolveCommand::run(std::ostream& out, std::ostream& err) const {
   const prob::Problem& problem = *inputs.loaded.problem;
 
   phys::ImpactTable table;
+  bool built = false;  // a first build of the table is not charged to --max-time
   if (simulation.impact_method == phys::ImpactMethod::table) {
-    const int code =
-        prepare_impact_table(kCommandName, problem.scene, args_.impact.table_cache, args_.threads,
-                             command_->count("--accuracy") > 0, &table, &simulation, err);
+    const int code = prepare_impact_table(kCommandName, problem.scene, args_.impact.table_cache,
+                                          args_.threads, command_->count("--accuracy") > 0, &table,
+                                          &simulation, err, &built);
     if (code != kExitOk) return code;
     options.simulation = simulation;
   }
 
-  const plan::PlanResult result = plan::plan(problem, options);
+  // --max-time bounds the whole command: the plan gets what reading the inputs and
+  // loading the table left of it.
+  plan::PlannerOptions budgeted = options;
+  if (!built) {
+    const double spent =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    budgeted.max_time_s = std::max(1e-6, options.max_time_s - spent);
+    if (spent > 0.5 * options.max_time_s)
+      err << kCommandName << ": reading the problem and loading the impact table took "
+          << fmt::format("{:.3g} s of the {:.3g} s --max-time budget; the plan has {:.3g} s",
+                         spent, options.max_time_s, budgeted.max_time_s)
+          << '\n';
+  }
+  const plan::PlanResult result = plan::plan(problem, budgeted);
   if (result.status == plan::PlanStatus::invalid_input) return usage(result.message);
 
   // The drawing first: if it cannot be written, nothing else is printed.

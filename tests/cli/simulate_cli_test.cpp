@@ -11,6 +11,7 @@
 
 #include "cli_test_support.hpp"
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
 
 // The test files share their helpers (cli_test_support.hpp) by living in its namespace.
@@ -116,6 +117,43 @@ TEST(Simulate, JsonEqualsAnIndependentLibrarySimulation) {
   EXPECT_EQ(j.at("method"), "exact");
   EXPECT_EQ(j.at("shot").at("aim_deg").get<double>(), -60.36);
   EXPECT_EQ(j.at("units").at("position"), "m");
+}
+
+// --samples N: the stroke's success under the planner's noise, with its 95 % Wilson
+// interval, as the library estimates it for the same seed; without noise every stroke
+// is the nominal one, which lands, so p = 1 and the lower bound is N / (N + z^2).
+TEST(Simulate, SamplesEstimateTheSuccessWithItsInterval) {
+  const prob::Problem problem = shipped("one_rail_position");
+  const ProcessResult run = cueplan(one_rail_command("--samples 120 --seed 3 --json"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  const cueplan::planner::Success expected = cueplan::planner::estimate_success(
+      problem, kOneRail, cueplan::planner::NoiseModel{}, 120, 3, phys::SimulationOptions{});
+  const json& success = j.at("success");
+  EXPECT_FALSE(success.contains("pot"));
+  EXPECT_EQ(success.at("both"), success.at("position"));
+  EXPECT_EQ(success.at("both").at("samples").get<int>(), 120);
+  EXPECT_EQ(success.at("both").at("p").get<double>(), expected.both.p);
+  EXPECT_EQ(success.at("both").at("low").get<double>(), expected.both.low);
+  EXPECT_EQ(success.at("both").at("high").get<double>(), expected.both.high);
+  EXPECT_GT(expected.both.p, 0.0);
+  EXPECT_LT(expected.both.p, 1.0);
+  EXPECT_EQ(j.at("noise").at("seed").get<int>(), 3);
+
+  const ProcessResult still = cueplan(one_rail_command("--samples 40 --noise 0 --json"), "still");
+  ASSERT_EQ(still.exit_code, 0) << still.err;
+  const json still_json = json::parse(still.out);
+  const json& perfect = still_json.at("success").at("both");
+  const double z2 = 1.959963984540054 * 1.959963984540054;
+  EXPECT_EQ(perfect.at("p").get<double>(), 1.0);
+  EXPECT_NEAR(perfect.at("low").get<double>(), 40.0 / (40.0 + z2), 1e-12);
+  EXPECT_EQ(perfect.at("high").get<double>(), 1.0);
+
+  const ProcessResult text = cueplan(one_rail_command("--samples 120 --seed 3"), "text");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("success         "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("(95 % interval "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("of 120 noisy strokes solve the problem"), std::string::npos) << text.out;
 }
 
 // The paper scheme reaches the simulator too, and its answer is close to the exact one.
@@ -418,7 +456,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"MissingBatchFile", "{one_rail} --batch /nonexistent/shots.csv", "--batch"},
         BadInput{"UnwritableSvg", "{one_rail} --speed 1 --aim 0 --svg /nonexistent/dir/x.svg",
                  "--svg"},
-        BadInput{"UnknownFlag", "{one_rail} --speed 1 --aim 0 --angle 3", "--angle"}),
+        BadInput{"UnknownFlag", "{one_rail} --speed 1 --aim 0 --angle 3", "--angle"},
+        BadInput{"NegativeSamples", "{one_rail} --speed 1 --aim 0 --samples -1", "--samples"},
+        BadInput{"NegativeNoise", "{one_rail} --speed 1 --aim 0 --samples 5 --noise -1",
+                 "--noise"},
+        BadInput{"NoiseWithoutSamples", "{one_rail} --speed 1 --aim 0 --noise 2", "--noise"},
+        BadInput{"BatchWithSamples", "{one_rail} --batch x.csv --samples 5", "--batch"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 TEST(SimulateBadInputMessage, SpeedMessageIsTheDocumentedOne) {

@@ -34,6 +34,9 @@ std::string solve_command(const std::string& stem, const std::string& extra = {}
   return "solve '" + problem_path(stem) + "' " + kQuick + (extra.empty() ? "" : " " + extra);
 }
 
+// A JSON number as text that reads back to the same double.
+std::string fmt_exact(const json& number) { return json(number.get<double>()).dump(); }
+
 json parsed(const ProcessResult& run) {
   try {
     return json::parse(run.out);
@@ -133,6 +136,43 @@ TEST(Solve, JsonHasEveryFieldAndTheShotsAreTheSimulators) {
                         j["shot"]["topspin_k"].get<double>(),
                         j["shot"]["sidespin_k"].get<double>()};
   EXPECT_EQ(prob::check_shot(problem.limits, best), "");
+}
+
+// Every shot's success comes as {position, both}, each {p, low, high, samples}, with
+// no pot in a problem without one; both equals position and success_probability is
+// both.p; and the best stroke's estimate is what `cueplan simulate --samples` gives
+// for it with the same seed and samples.
+TEST(Solve, JsonSuccessHasIntervalsAndIsWhatSimulateEstimates) {
+  const ProcessResult run = cueplan(solve_command("one_rail_position", "--json"));
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const json j = parsed(run);
+  std::vector<json> shots = {j};
+  for (const json& a : j["alternatives"]) shots.push_back(a);
+  for (const json& s : shots) {
+    ASSERT_TRUE(s.contains("success")) << s.dump();
+    const json& success = s["success"];
+    EXPECT_FALSE(success.contains("pot"));
+    for (const char* part : {"position", "both"}) {
+      const json& e = success[part];
+      for (const char* key : {"p", "low", "high", "samples"}) EXPECT_TRUE(e.contains(key)) << key;
+      EXPECT_LE(e["low"].get<double>(), e["p"].get<double>());
+      EXPECT_GE(e["high"].get<double>(), e["p"].get<double>());
+      EXPECT_GT(e["samples"].get<int>(), 0);
+      EXPECT_LE(e["samples"].get<int>(), 50);
+    }
+    EXPECT_EQ(success["both"], success["position"]);
+    EXPECT_EQ(s["success_probability"].get<double>(), success["both"]["p"].get<double>());
+    EXPECT_GE(j["success"]["both"]["high"].get<double>(), success["both"]["low"].get<double>());
+  }
+  const json& shot = j["shot"];
+  const ProcessResult sim = cueplan(
+      "simulate '" + problem_path("one_rail_position") + "' --method exact --speed " +
+          fmt_exact(shot["speed"]) + " --aim " + fmt_exact(shot["aim_deg"]) + " --topspin-k " +
+          fmt_exact(shot["topspin_k"]) + " --sidespin-k " + fmt_exact(shot["sidespin_k"]) +
+          " --samples 50 --seed 11 --json",
+      "sim");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_EQ(parsed(sim)["success"], j["success"]);
 }
 
 TEST(Solve, SameSeedGivesTheSameJson) {
