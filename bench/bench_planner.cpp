@@ -295,7 +295,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench_planner: %s\n", r.error.c_str());
       return 2;
     }
-    cases.push_back({"shipped", std::move(*r.problem), {}});
+    cases.push_back({"shipped", std::move(*r.problem), {}, std::nullopt});
   }
   std::deque<physics::ImpactTable> tables;
   auto simulation_for = [&](const physics::CushionParams& params) {
