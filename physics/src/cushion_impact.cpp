@@ -108,6 +108,7 @@ double kinetic_energy(const CushionParams& params, const BallState& state) {
 const char* to_string(ImpactMethod method) {
   switch (method) {
     case ImpactMethod::exact: return "exact";
+    case ImpactMethod::extrapolation: return "extrapolation";
     case ImpactMethod::paper: return "paper";
     case ImpactMethod::table: return "table";
   }
@@ -129,7 +130,8 @@ const char* to_string(Contact contact) {
 }
 
 bool parse_method(const std::string& name, ImpactMethod* method) {
-  for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::paper, ImpactMethod::table}) {
+  for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::extrapolation, ImpactMethod::paper,
+                         ImpactMethod::table}) {
     if (name == to_string(m)) {
       *method = m;
       return true;
@@ -211,37 +213,53 @@ ImpactResult invalid(std::string why) {
   return r;
 }
 
-}  // namespace
+// An impact made ready to solve, or already answered (invalid input, or the table).
+struct Prepared {
+  bool answered = false;
+  ImpactResult result;  // when answered
+  ImpactMethod method = ImpactMethod::exact;  // the method that solves it
+  double tolerance = 0.0;
+  detail::ScaledImpact impact;
+};
 
-ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
-                            const ImpactOptions& options) {
-  if (std::string why = params.validate(); !why.empty()) return invalid(std::move(why));
-  if (std::string why = validate_state(incoming); !why.empty()) return invalid(std::move(why));
+// Stage 1 of resolve_impact: checks, the table's answer where it has one, the method
+// and tolerance to use, and the impact in scaled units. `params` has been validated.
+Prepared prepare(const CushionParams& params, const BallState& incoming,
+                 const ImpactOptions& options) {
+  Prepared prep;
+  auto answer = [&](ImpactResult r) {
+    prep.answered = true;
+    prep.result = std::move(r);
+    return prep;
+  };
+  if (std::string why = validate_state(incoming); !why.empty()) return answer(invalid(std::move(why)));
 
   // The exact method's tolerance: its own, or for the impacts the table does not
   // answer, the one asked for the table's fallbacks.
   double tolerance = options.tolerance;
   const char* tolerance_field = "tolerance";
   if (options.method == ImpactMethod::table) {
-    if (options.table == nullptr) return invalid("method table needs a built impact table");
+    if (options.table == nullptr) return answer(invalid("method table needs a built impact table"));
     const double fallback = options.table_fallback_tolerance;
     if (fallback != 0.0 && !tolerance_in_range(fallback))
-      return invalid(describe("table_fallback_tolerance",
-                              "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
-                              fallback));
+      return answer(invalid(describe("table_fallback_tolerance",
+                                     "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
+                                     fallback)));
     ImpactResult r;
-    if (options.table->resolve(params, incoming, &r)) return r;
+    if (options.table->resolve(params, incoming, &r)) return answer(std::move(r));
     // Outside the table's domain or parameters, or a fallback cell: the exact method,
     // as accurate as the table.
     tolerance = fallback != 0.0 ? fallback : options.table->fallback_tolerance();
     tolerance_field = "table_fallback_tolerance";
   }
   if (options.method == ImpactMethod::paper && options.paper_steps < 1)
-    return invalid(describe("paper_steps", "must be at least 1", options.paper_steps));
+    return answer(invalid(describe("paper_steps", "must be at least 1", options.paper_steps)));
   if (options.method != ImpactMethod::paper && !tolerance_in_range(tolerance))
-    return invalid(describe(tolerance_field, "must lie in [1e-15, 1e-2]", tolerance));
+    return answer(invalid(describe(tolerance_field, "must lie in [1e-15, 1e-2]", tolerance)));
 
-  detail::ScaledImpact impact;
+  prep.method = options.method == ImpactMethod::table ? ImpactMethod::exact : options.method;
+  prep.tolerance = tolerance;
+  detail::ScaledImpact& impact = prep.impact;
   impact.geometry = detail::Geometry::from(params);
   impact.restitution = params.restitution;
   impact.speed_scale = std::hypot(incoming.velocity.x, incoming.velocity.y);
@@ -249,24 +267,86 @@ ImpactResult resolve_impact(const CushionParams& params, const BallState& incomi
   const double o = params.radius / v;
   impact.incoming = {incoming.velocity.x / v, incoming.velocity.y / v, incoming.spin.x * o,
                      incoming.spin.y * o, incoming.spin.z * o};
+  return prep;
+}
 
-  const size_t trace_from = options.trace ? options.trace->size() : 0;
-  detail::ScaledOutcome out;
-  ImpactMethod used = options.method == ImpactMethod::paper ? ImpactMethod::paper
-                                                            : ImpactMethod::exact;
-  if (used == ImpactMethod::paper)
-    out = detail::solve_paper(impact, options.paper_steps, options.trace);
-  else
-    out = detail::solve_exact(impact, tolerance, options.max_steps, options.trace);
+// Stage 2: the method, in scaled units.
+detail::ScaledOutcome solve(const Prepared& prep, const ImpactOptions& options) {
+  switch (prep.method) {
+    case ImpactMethod::paper:
+      return detail::solve_paper(prep.impact, options.paper_steps, options.trace);
+    case ImpactMethod::extrapolation:
+      return detail::solve_exact(prep.impact, prep.tolerance, options.max_steps, options.trace);
+    default:
+      return detail::solve_taylor(prep.impact, prep.tolerance, options.max_steps, options.trace);
+  }
+}
 
-  ImpactResult r = to_result(params, out, v, options.trace, trace_from);
-  r.method_used = used;
+// Stage 3: physical units, the method used and the rigid-limit flag.
+ImpactResult complete(const CushionParams& params, const BallState& incoming,
+                      const Prepared& prep, const detail::ScaledOutcome& out,
+                      std::vector<TraceSample>* trace, size_t trace_from) {
+  ImpactResult r = to_result(params, out, prep.impact.speed_scale, trace, trace_from);
+  r.method_used = prep.method;
   if (r.status == ImpactStatus::ok && incoming.velocity.y > params.rigid_speed_limit) {
     r.status = ImpactStatus::rigid_limit_exceeded;
     r.message = describe("velocity.y", "is above the rigid-cushion limit (m/s)",
                          incoming.velocity.y);
   }
   return r;
+}
+
+}  // namespace
+
+// The stages of an impact, in order: prepare (checks, the table, scaling), solve (the
+// method), complete (units and flags).
+ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
+                            const ImpactOptions& options) {
+  if (std::string why = params.validate(); !why.empty()) return invalid(std::move(why));
+  const Prepared prep = prepare(params, incoming, options);
+  if (prep.answered) return prep.result;
+  const size_t trace_from = options.trace ? options.trace->size() : 0;
+  const detail::ScaledOutcome out = solve(prep, options);
+  return complete(params, incoming, prep, out, options.trace, trace_from);
+}
+
+// The same stages for many impacts; the exact method's share solved in SIMD lanes.
+void resolve_impacts(const CushionParams& params, std::span<const BallState> in,
+                     std::span<ImpactResult> out, const ImpactOptions& options) {
+  auto refuse_all = [&](const std::string& why) {
+    for (ImpactResult& r : out) r = invalid(why);
+  };
+  if (out.size() != in.size())
+    return refuse_all(describe("out", "must have as many elements as the impacts (in)",
+                               static_cast<double>(out.size())));
+  if (options.trace != nullptr) return refuse_all("trace must be null: a batch records no slip histories");
+  const int lanes = options.batch_lanes;
+  if (lanes != 0 && lanes != 1 && lanes != 2 && lanes != 4 && lanes != 8)
+    return refuse_all(describe("batch_lanes", "must be 0 (widest), 1, 2, 4 or 8", lanes));
+  if (std::string why = params.validate(); !why.empty()) return refuse_all(why);
+
+  std::vector<Prepared> prepared(in.size());
+  std::vector<size_t> exact;  // the impacts the exact method solves, by index
+  for (size_t i = 0; i < in.size(); ++i) {
+    prepared[i] = prepare(params, in[i], options);
+    if (prepared[i].answered)
+      out[i] = std::move(prepared[i].result);
+    else if (prepared[i].method == ImpactMethod::exact)
+      exact.push_back(i);
+    else
+      out[i] = complete(params, in[i], prepared[i], solve(prepared[i], options), nullptr, 0);
+  }
+  if (exact.empty()) return;
+  std::vector<detail::ScaledImpact> impacts(exact.size());
+  for (size_t j = 0; j < exact.size(); ++j) impacts[j] = prepared[exact[j]].impact;
+  std::vector<detail::ScaledOutcome> outcomes(exact.size());
+  // One tolerance for the batch: the options' own, or the table's fallback one.
+  detail::solve_taylor_batch(impacts.data(), impacts.size(), prepared[exact[0]].tolerance,
+                             options.max_steps, lanes, outcomes.data());
+  for (size_t j = 0; j < exact.size(); ++j) {
+    const size_t i = exact[j];
+    out[i] = complete(params, in[i], prepared[i], outcomes[j], nullptr, 0);
+  }
 }
 
 }  // namespace cueplan::physics

@@ -1,4 +1,4 @@
-// The three ways of resolving an impact, behind resolve_impact (private header).
+// The ways of resolving an impact, behind resolve_impact (private header).
 #pragma once
 
 #include "cueplan/physics/cushion_impact.hpp"
@@ -38,8 +38,17 @@ struct ScaledOutcome {
 // Trace samples are recorded in scaled units and converted by the caller.
 ScaledOutcome solve_paper(const ScaledImpact& impact, int steps,
                           std::vector<TraceSample>* trace);
+// The extrapolation method (impact_exact.cpp).
 ScaledOutcome solve_exact(const ScaledImpact& impact, double tolerance, int max_steps,
                           std::vector<TraceSample>* trace);
+// The Taylor method, `exact` (impact_taylor.cpp).
+ScaledOutcome solve_taylor(const ScaledImpact& impact, double tolerance, int max_steps,
+                           std::vector<TraceSample>* trace);
+// The same for count impacts of one geometry in SIMD lanes (impact_taylor_lanes.cpp):
+// out[i] is bit for bit solve_taylor(impacts[i], ...) without a trace. lanes: 0 for
+// the widest the CPU has, else 1, 2, 4 or 8 (at most the widest).
+void solve_taylor_batch(const ScaledImpact* impacts, size_t count, double tolerance,
+                        int max_steps, int lanes, ScaledOutcome* out);
 
 // Fills a trace sample (scaled) from a state and the work so far.
 TraceSample scaled_sample(const Geometry& g, const Scaled& q, double impulse, double work);
