@@ -15,7 +15,7 @@ class App;
 namespace cueplan::cli {
 
 struct ImpactArgs {
-  std::string method = "table";  // exact, paper or table
+  std::string method = "table";  // table, exact, extrapolation or paper
   double accuracy = 1e-9;        // relative error wanted from each cushion impact
   std::string table_cache;       // empty: physics::default_table_cache_dir()
 };

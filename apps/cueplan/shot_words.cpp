@@ -49,6 +49,8 @@ std::string method_text(const phys::SimulationOptions& options, const phys::Scen
           100.0 * options.table->fallback_fraction());
       return buf;
     }
+    case phys::ImpactMethod::extrapolation:
+      return "extrapolation (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
     case phys::ImpactMethod::exact:
       break;
   }

@@ -48,10 +48,15 @@
 // The commonest step (both contacts slipping, in tau) has its own kernel
 // (impact_taylor_series.hpp), shared with the SIMD lanes of resolve_impacts; every
 // other step uses the general kernel below.
+// Vectors of four doubles pass between the kernels' inlined helpers only.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "impact_taylor.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #ifdef TAYLOR_DEBUG
 #include <cstdio>
@@ -72,30 +77,44 @@ constexpr double kLinearStart = 1e-9;
 #endif
 constexpr double kRegI = KREGI;
 
-double horner(const double* c, int degree, double h) {
-  double v = c[degree];
-  for (int j = degree - 1; j >= 0; --j) v = v * h + c[j];
-  return v;
+// The polynomial c[0..degree] at h, as four interleaved Horner chains in h^4 (the
+// coefficients of each residue of the power mod 4): a quarter of Horner's chain of
+// dependent multiply-adds.
+double poly_at(const double* c, int degree, double h) {
+  const double h2 = h * h, h4 = h2 * h2;
+  const int top = degree / 4;
+  double a0 = c[4 * top];
+  double a1 = 4 * top + 1 <= degree ? c[4 * top + 1] : 0.0;
+  double a2 = 4 * top + 2 <= degree ? c[4 * top + 2] : 0.0;
+  double a3 = 4 * top + 3 <= degree ? c[4 * top + 3] : 0.0;
+  for (int i = top - 1; i >= 0; --i) {
+    a0 = a0 * h4 + c[4 * i];
+    a1 = a1 * h4 + c[4 * i + 1];
+    a2 = a2 * h4 + c[4 * i + 2];
+    a3 = a3 * h4 + c[4 * i + 3];
+  }
+  return (a0 + h * a1) + h2 * (a2 + h * a3);
 }
 
-double horner_slope(const double* c, int degree, double h) {
-  double v = degree * c[degree];
-  for (int j = degree - 1; j >= 1; --j) v = v * h + j * c[j];
-  return v;
+// The state at h from a step's series.
+void state_at(const Coefficients<double>& s, int degree, double h, double q[kState]) {
+  for (int c = 0; c < kState; ++c) q[c] = poly_at(s.c[c], degree, h);
 }
 
 // A root in (0, h] of the polynomial c with c(0) > 0 >= c(h): Newton steps kept
 // inside the bracket, bisection where they leave it.
 double root_in(const double* c, int degree, double h) {
+  double slope_c[kTerms];
+  for (int j = 1; j <= degree; ++j) slope_c[j - 1] = j * c[j];
   double lo = 0.0, hi = h;
-  const double f0 = c[0], fh = horner(c, degree, h);
+  const double f0 = c[0], fh = poly_at(c, degree, h);
   double x = (f0 - fh) > 0.0 ? hi * f0 / (f0 - fh) : 0.5 * hi;
   if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
   for (int iter = 0; iter < 100; ++iter) {
-    const double f = horner(c, degree, x);
+    const double f = poly_at(c, degree, x);
     if (f == 0.0) return x;
     (f > 0.0 ? lo : hi) = x;
-    const double slope = horner_slope(c, degree, x);
+    const double slope = poly_at(slope_c, degree - 1, x);
     double next = x - f / slope;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::abs(next - x) <= 2.0 * kEpsilon * x || hi - lo <= 2.0 * kEpsilon * hi) return next;
@@ -105,6 +124,26 @@ double root_in(const double* c, int degree, double h) {
 }
 
 double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+// x^(-1/n) for x > 0 to about 1e-4 relative (a step size needs no more), from the
+// binary exponent and short polynomials for log2 on [1, 2) and 2^f on [0, 1).
+double inverse_root(double x, int n) {
+  if (!(x >= 1e-300 && x <= 1e300)) return std::pow(x, -1.0 / n);
+  const uint64_t bits = std::bit_cast<uint64_t>(x);
+  const int exponent = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+  const double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
+  const double t = m - 1.0;  // log2(1 + t), t in [0, 1)
+  const double log2m =
+      t * (1.4425449 + t * (-0.7181452 + t * (0.4575485 + t * (-0.2779042 + t * 0.0958945))));
+  const double y = -(exponent + log2m) / n;
+  const double whole = std::floor(y);
+  const double f = y - whole;  // 2^f, f in [0, 1)
+  const double p = 1.0 + f * (0.6931472 + f * (0.2402265 + f * (0.0555041 + f * (0.0096181 + f * 0.0013333))));
+  return std::ldexp(p, static_cast<int>(whole));
+}
+
+// |(x, y)| (the slips and frictions here are far from overflow and underflow).
+double norm(double x, double y) { return std::sqrt(x * x + y * y); }
 
 // Where f falls through zero in (lo, hi], f(lo) = f_lo >= 0 > f(hi): the Illinois
 // method, ending within rounding of the root on the side where f >= 0.
@@ -163,6 +202,21 @@ double conv(const double* a, const double* b, int k) {
   double v = 0.0;
   for (int j = 0; j <= k; ++j) v += a[j] * b[k - j];
   return v;
+}
+
+// The fast kernels for one impact: its quads in SSE2 (every x86-64 CPU) or AVX2.
+void tau_sse2(const Constants& k, int n, Coefficients<double>& s) {
+  series_tau<double, QuadSSE2>(k, n, s);
+}
+void sigma_sse2(const Constants& k, int n, Coefficients<double>& s) {
+  series_sigma<double, QuadSSE2>(k, n, s);
+}
+__attribute__((target("avx2"))) void tau_avx2(const Constants& k, int n, Coefficients<double>& s) {
+  series_tau<double, QuadAVX>(k, n, s);
+}
+__attribute__((target("avx2"))) void sigma_avx2(const Constants& k, int n,
+                                                Coefficients<double>& s) {
+  series_sigma<double, QuadAVX>(k, n, s);
 }
 
 }  // namespace
@@ -260,7 +314,7 @@ void Integrator::General::derive(int k) {
     ContactSeries& X = c_[i];
     if (X.stick || X.young) continue;
     if (k == 0) {
-      X.r[0] = std::hypot(X.x[0], X.y[0]);
+      X.r[0] = norm(X.x[0], X.y[0]);
       X.ex[0] = X.x[0] / X.r[0];
       X.ey[0] = X.y[0] / X.r[0];
     } else {
@@ -379,7 +433,7 @@ bool Integrator::General::young_origin() {
         double rx, ry, ax, ay;
         rate_of(Y, at_i, angle[i], &rx, &ry);
         const double f = cross(Y.ex[0], Y.ey[0], rx, ry);
-        if (std::abs(f) <= 4.0 * kEpsilon * std::hypot(rx, ry)) break;
+        if (std::abs(f) <= 4.0 * kEpsilon * norm(rx, ry)) break;
         const double step = 1e-7;
         rate_of(Y, at_i, angle[i] + step, &ax, &ay);
         double delta = -f / ((cross(Y.ex[0], Y.ey[0], ax, ay) - f) / step);
@@ -397,7 +451,7 @@ bool Integrator::General::young_origin() {
     ContactSeries& Y = c_[young_[i]];
     const bool at_i = young_[i] == kI;
     const double rx = rate[at_i ? kXI : kXC], ry = rate[at_i ? kYI : kYC];
-    const double size = std::hypot(rx, ry);
+    const double size = norm(rx, ry);
     const double grow = rx * Y.ex[0] + ry * Y.ey[0];
     // Grows like P: its rate is along it, away from zero, and not within rounding of
     // zero (a stick that broke at the edge of its cone leaves a rate of that order).
@@ -649,13 +703,13 @@ Scaled Integrator::centroid() const {
 }
 
 double Integrator::slip_size(int contact) const {
-  return contact == kI ? std::hypot(q_[kXI], q_[kYI]) : std::hypot(q_[kXC], q_[kYC]);
+  return contact == kI ? norm(q_[kXI], q_[kYI]) : norm(q_[kXC], q_[kYC]);
 }
 
 // A slipping contact's direction: its slip's, or for a young one its seed.
 Direction Integrator::direction(int contact) const {
   const double x = q_[contact == kI ? kXI : kXC], y = q_[contact == kI ? kYI : kYC];
-  const double r = std::hypot(x, y);
+  const double r = norm(x, y);
   if (mode_[contact].young || !(r > 0.0)) return mode_[contact].seed;
   return {x / r, y / r};
 }
@@ -758,7 +812,7 @@ void Integrator::settle_modes(bool force_slip_i, bool force_slip_c) {
   Direction di = zero_i ? mode_[kI].seed : direction(kI);
   Direction dc = zero_c ? mode_[kC].seed : direction(kC);
   auto against = [](double fx, double fy, Direction fallback) {
-    const double n = std::hypot(fx, fy);
+    const double n = norm(fx, fy);
     return n > 0.0 ? Direction{-fx / n, -fy / n} : fallback;
   };
   {
@@ -806,18 +860,18 @@ void Integrator::settle_modes(bool force_slip_i, bool force_slip_c) {
   ++mode_changes_;
 }
 
-// Chooses the next step's variable and kernel; true for the fast kernel.
-bool Integrator::plan_step() {
+// Chooses the next step's variable and kernel.
+Kernel Integrator::plan_step() {
   plan_ = Plan{};
   plan_.young = (slipping(kI) && mode_[kI].young) || (slipping(kC) && mode_[kC].young);
-  if (plan_.young) return false;
+  if (plan_.young) return Kernel::general;
   double rate[4];
   slip_rates(rate);
   for (int i = 0; i < 2; ++i) {
     if (!slipping(i)) continue;
     const double x = q_[i == kI ? kXI : kXC], y = q_[i == kI ? kYI : kYC];
     const double dx = rate[2 * i], dy = rate[2 * i + 1];
-    const double r = std::hypot(x, y), speed = std::hypot(dx, dy);
+    const double r = norm(x, y), speed = norm(dx, dy);
     const double closing = -(x * dx + y * dy) / r;  // -d|u|/dP
     // Heading straight for zero within reach: step in P and land on the root.
     const bool straight = closing > 0.0 && r < 3.0 * closing * step_impulse_ &&
@@ -827,10 +881,18 @@ bool Integrator::plan_step() {
     else
       plan_.reg[i] = i == kC || r < kRegI * speed * uy_start_ / g_.c;
   }
-  return slipping(kI) && slipping(kC) && !plan_.reg[kI] && plan_.reg[kC];
+  if (!slipping(kI) || !slipping(kC) || !plan_.reg[kC]) return Kernel::general;
+  return plan_.reg[kI] ? Kernel::sigma : Kernel::tau;
 }
 
+#ifdef TAYLOR_COUNT
+long g_count[8];
+long g_limit[kState];
+#endif
 void Integrator::take_planned_step() {
+#ifdef TAYLOR_COUNT
+  g_count[plan_.young ? 0 : 1 + plan_.reg[0] + 2 * plan_.reg[1] + 4 * (mode_[0].stick || mode_[1].stick)]++;
+#endif
   Coefficients<double> s;
   for (int q = 0; q < kState; ++q) s.c[q][0] = q_[q];
   General general(*this, s);
@@ -843,7 +905,13 @@ void Integrator::take_planned_step() {
   take_step(s, set_.order);
 }
 
+#ifdef TAYLOR_COUNT
+long f_count;
+#endif
 void Integrator::finish_fast_step(const Coefficients<double>& series) {
+#ifdef TAYLOR_COUNT
+  ++f_count;
+#endif
   out_->rhs_evaluations += set_.order + 1;
   take_step(series, set_.order);
 }
@@ -858,8 +926,8 @@ double Integrator::step_size(const Coefficients<double>& s, int n) const {
     worst_n1 = std::max(worst_n1, std::abs(s.c[q][n + 1]) * scale);
   }
   double h = INFINITY;
-  if (worst_n > 0.0) h = std::min(h, std::pow(worst_n, -1.0 / n));
-  if (worst_n1 > 0.0) h = std::min(h, std::pow(worst_n1, -1.0 / (n + 1)));
+  if (worst_n > 0.0) h = std::min(h, inverse_root(worst_n, n));
+  if (worst_n1 > 0.0) h = std::min(h, inverse_root(worst_n1, n + 1));
   return h;
 }
 
@@ -887,14 +955,14 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   enum Event { kCompressionEnd, kImpactEnd, kSlipZeroI, kSlipZeroC, kBreakI, kBreakC, kEvents };
   double when[kEvents];
   std::fill(when, when + kEvents, INFINITY);
-  double poly[kTerms];
+  double poly[kTerms] = {};
   if (compressing_) {
     for (int j = 0; j <= deg; ++j) poly[j] = (s.c[kYC][j] - s.c[kYI][j]) * k_.inv_1ps;
-    if (horner(poly, deg, h) <= 0.0) when[kCompressionEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
+    if (poly_at(poly, deg, h) <= 0.0) when[kCompressionEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
   } else {
     for (int j = 0; j <= deg; ++j) poly[j] = s.c[kW][j];
     poly[0] -= work_target_;
-    if (horner(poly, deg, h) <= 0.0) when[kImpactEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
+    if (poly_at(poly, deg, h) <= 0.0) when[kImpactEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
   }
   for (int i = 0; i < 2; ++i) {
     const int ix = i == kI ? kXI : kXC, iy = i == kI ? kYI : kYC;
@@ -904,16 +972,16 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
       const double r0 = std::sqrt(q_[ix] * q_[ix] + q_[iy] * q_[iy]);
       const double ex = q_[ix] / r0, ey = q_[iy] / r0;
       for (int j = 0; j <= deg; ++j) poly[j] = ex * s.c[ix][j] + ey * s.c[iy][j];
-      if (horner(poly, deg, h) <= 0.0) {
+      if (poly_at(poly, deg, h) <= 0.0) {
         const double at = root_in(poly, deg, h);
-        const double across = -ey * horner(s.c[ix], deg, at) + ex * horner(s.c[iy], deg, at);
+        const double across = -ey * poly_at(s.c[ix], deg, at) + ex * poly_at(s.c[iy], deg, at);
         if (std::abs(across) <= set_.cross_slip) when[kSlipZeroI + i] = at;
       }
     } else if (!slipping(i)) {
       // A stick breaks where its margin, from the state, falls through zero.
       auto margin = [&](double x) {
         double q[kState];
-        for (int c = 0; c < kState; ++c) q[c] = horner(s.c[c], deg, x);
+        state_at(s, deg, x, q);
         return stick_margin_at(i, q);
       };
       const double m0 = stick_margin_at(i, q_);
@@ -934,7 +1002,7 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
 #endif
 
   record_trace(&s, n, end);
-  for (int q = 0; q < kState; ++q) q_[q] = horner(s.c[q], deg, end);
+  state_at(s, deg, end, q_);
   for (int i = 0; i < 2; ++i)
     if (!slipping(i)) {
       q_[i == kI ? kXI : kXC] = 0.0;
@@ -1020,7 +1088,7 @@ void Integrator::record_trace(const Coefficients<double>* s, int n, double h) {
   constexpr int kPoints = 8;
   for (int i = 1; i <= kPoints; ++i) {
     double q[kState];
-    for (int c = 0; c < kState; ++c) q[c] = horner(s->c[c], n + 1, h * i / kPoints);
+    state_at(*s, n + 1, h * i / kPoints, q);
     sample(q);
   }
 }
@@ -1034,14 +1102,23 @@ void Integrator::fail(const char* why) {
 
 void Integrator::run() {
   Coefficients<double> s;
+#ifdef TAYLOR_NO_AVX
+  const bool avx2 = false;
+#else
+  const bool avx2 = __builtin_cpu_supports("avx2");
+#endif
   while (!done_) {
-    if (plan_step()) {
-      for (int q = 0; q < kState; ++q) s.c[q][0] = q_[q];
-      slip_slip_tau(k_, set_.order, s);
-      finish_fast_step(s);
-    } else {
+    const Kernel kernel = plan_step();
+    if (kernel == Kernel::general) {
       take_planned_step();
+      continue;
     }
+    for (int q = 0; q < kState; ++q) s.c[q][0] = q_[q];
+    if (kernel == Kernel::tau)
+      (avx2 ? tau_avx2 : tau_sse2)(k_, set_.order, s);
+    else
+      (avx2 ? sigma_avx2 : sigma_sse2)(k_, set_.order, s);
+    finish_fast_step(s);
   }
   finish();
 }

@@ -22,6 +22,10 @@ struct Settings {
   static Settings from(double tolerance, int max_steps);
 };
 
+// The kernel a step uses: one of the two fast ones (both contacts slipping, in tau
+// or in sigma; impact_taylor_series.hpp) or the general one (impact_taylor.cpp).
+enum class Kernel { tau, sigma, general };
+
 // One impact, step by step. A step computes the state's Taylor series in the step's
 // variable, chooses its length from the series, and ends early on the first event
 // (a root of one of the step's polynomials).
@@ -32,10 +36,10 @@ class Integrator {
 
   bool done() const { return done_; }
 
-  // Plans the next step. Returns true when it is the commonest kind - both contacts
-  // slipping, in tau - whose series slip_slip_tau computes from state(); the caller
-  // then passes them to finish_fast_step. Otherwise the caller calls take_planned_step.
-  bool plan_step();
+  // Plans the next step. For Kernel::tau and Kernel::sigma the caller computes the
+  // series with series_tau or series_sigma from state() and passes them to
+  // finish_fast_step; for Kernel::general it calls take_planned_step.
+  Kernel plan_step();
   const double* state() const { return q_; }
   void finish_fast_step(const Coefficients<double>& series);
   void take_planned_step();

@@ -12,6 +12,9 @@
 #include <algorithm>
 #include <optional>
 
+// Vectors of doubles pass between the kernels' inlined helpers only.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "impact_taylor.hpp"
 
 namespace cueplan::physics::detail {
@@ -22,19 +25,34 @@ typedef double Pack2 __attribute__((vector_size(16)));
 typedef double Pack4 __attribute__((vector_size(32)));
 typedef double Pack8 __attribute__((vector_size(64)));
 
-void kernel_sse2(const Constants& k, int n, Coefficients<Pack2>& s) { slip_slip_tau(k, n, s); }
+// The fast kernels on several impacts at once: a lane of each SIMD vector is one impact.
+template <class Pack>
+using LaneKernel = void (*)(const Constants&, int, Coefficients<Pack>&);
 
-__attribute__((target("avx2"))) void kernel_avx2(const Constants& k, int n,
-                                                 Coefficients<Pack4>& s) {
-  slip_slip_tau(k, n, s);
+void tau_lanes_sse2(const Constants& k, int n, Coefficients<Pack2>& s) {
+  series_tau<Pack2, QuadOf<Pack2>>(k, n, s);
+}
+void sigma_lanes_sse2(const Constants& k, int n, Coefficients<Pack2>& s) {
+  series_sigma<Pack2, QuadOf<Pack2>>(k, n, s);
+}
+__attribute__((target("avx2"))) void tau_lanes_avx2(const Constants& k, int n,
+                                                    Coefficients<Pack4>& s) {
+  series_tau<Pack4, QuadOf<Pack4>>(k, n, s);
+}
+__attribute__((target("avx2"))) void sigma_lanes_avx2(const Constants& k, int n,
+                                                      Coefficients<Pack4>& s) {
+  series_sigma<Pack4, QuadOf<Pack4>>(k, n, s);
+}
+__attribute__((target("avx512f"))) void tau_lanes_avx512(const Constants& k, int n,
+                                                         Coefficients<Pack8>& s) {
+  series_tau<Pack8, QuadOf<Pack8>>(k, n, s);
+}
+__attribute__((target("avx512f"))) void sigma_lanes_avx512(const Constants& k, int n,
+                                                           Coefficients<Pack8>& s) {
+  series_sigma<Pack8, QuadOf<Pack8>>(k, n, s);
 }
 
-__attribute__((target("avx512f"))) void kernel_avx512(const Constants& k, int n,
-                                                      Coefficients<Pack8>& s) {
-  slip_slip_tau(k, n, s);
-}
-
-template <int L, class Pack, void (*Kernel)(const Constants&, int, Coefficients<Pack>&)>
+template <int L, class Pack, LaneKernel<Pack> Tau, LaneKernel<Pack> Sigma>
 void run_lanes(const Constants& constants, const Settings& settings, const ScaledImpact* impacts,
                size_t count, ScaledOutcome* out) {
   std::optional<Integrator> lane[L];
@@ -52,39 +70,42 @@ void run_lanes(const Constants& constants, const Settings& settings, const Scale
   const int n = settings.order;
   Coefficients<Pack> packed;
   Coefficients<double> single;
-  bool fast[L];
+  Kernel kinds[L];
   for (;;) {
     bool any = false;
-    int first_fast = -1;
     for (int i = 0; i < L; ++i) {
-      fast[i] = false;
+      kinds[i] = Kernel::general;
       while (lane[i] && lane[i]->done()) {
         lane[i]->finish();
         load(lane[i]);
       }
       if (!lane[i]) continue;
       any = true;
-      if (lane[i]->plan_step()) {
-        fast[i] = true;
-        if (first_fast < 0) first_fast = i;
-        const double* q = lane[i]->state();
-        for (int c = 0; c < kState; ++c) packed.c[c][0][i] = q[c];
-      } else {
-        lane[i]->take_planned_step();
-      }
+      kinds[i] = lane[i]->plan_step();
+      if (kinds[i] == Kernel::general) lane[i]->take_planned_step();
     }
     if (!any) break;
-    if (first_fast < 0) continue;
-    // Idle lanes repeat a busy one's state: same work, nothing read back.
-    for (int i = 0; i < L; ++i)
-      if (!fast[i])
-        for (int c = 0; c < kState; ++c) packed.c[c][0][i] = packed.c[c][0][first_fast];
-    Kernel(constants, n, packed);
-    for (int i = 0; i < L; ++i) {
-      if (!fast[i]) continue;
-      for (int c = 0; c < kState; ++c)
-        for (int j = 0; j <= n + 1; ++j) single.c[c][j] = packed.c[c][j][i];
-      lane[i]->finish_fast_step(single);
+    // One vector call for the lanes of each fast kernel; idle lanes repeat a busy
+    // one's state (same work, nothing read back).
+    for (Kernel kind : {Kernel::tau, Kernel::sigma}) {
+      int first = -1;
+      for (int i = 0; i < L; ++i)
+        if (kinds[i] == kind) {
+          if (first < 0) first = i;
+          const double* q = lane[i]->state();
+          for (int c = 0; c < kState; ++c) packed.c[c][0][i] = q[c];
+        }
+      if (first < 0) continue;
+      for (int i = 0; i < L; ++i)
+        if (kinds[i] != kind)
+          for (int c = 0; c < kState; ++c) packed.c[c][0][i] = packed.c[c][0][first];
+      (kind == Kernel::tau ? Tau : Sigma)(constants, n, packed);
+      for (int i = 0; i < L; ++i) {
+        if (kinds[i] != kind) continue;
+        for (int c = 0; c < kState; ++c)
+          for (int j = 0; j <= n + 1; ++j) single.c[c][j] = packed.c[c][j][i];
+        lane[i]->finish_fast_step(single);
+      }
     }
   }
 }
@@ -120,16 +141,16 @@ void solve_taylor_batch(const ScaledImpact* impacts, size_t count, double tolera
       taylor::run_scalar(constants, settings, impacts, count, out);
       break;
     case 2:
-      taylor::run_lanes<2, taylor::Pack2, taylor::kernel_sse2>(constants, settings, impacts, count,
-                                                               out);
+      taylor::run_lanes<2, taylor::Pack2, taylor::tau_lanes_sse2, taylor::sigma_lanes_sse2>(
+          constants, settings, impacts, count, out);
       break;
     case 4:
-      taylor::run_lanes<4, taylor::Pack4, taylor::kernel_avx2>(constants, settings, impacts, count,
-                                                               out);
+      taylor::run_lanes<4, taylor::Pack4, taylor::tau_lanes_avx2, taylor::sigma_lanes_avx2>(
+          constants, settings, impacts, count, out);
       break;
     default:
-      taylor::run_lanes<8, taylor::Pack8, taylor::kernel_avx512>(constants, settings, impacts,
-                                                                 count, out);
+      taylor::run_lanes<8, taylor::Pack8, taylor::tau_lanes_avx512, taylor::sigma_lanes_avx512>(
+          constants, settings, impacts, count, out);
       break;
   }
 }

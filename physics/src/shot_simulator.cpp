@@ -279,6 +279,7 @@ const char* to_string(ShotStatus status) {
 
 ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options) {
   if (options.impact_method == ImpactMethod::paper) return ImpactMethod::paper;
+  if (options.impact_method == ImpactMethod::extrapolation) return ImpactMethod::extrapolation;
   if (options.impact_method == ImpactMethod::table && options.table != nullptr &&
       options.table->covers(scene.ball_and_cushion) &&
       options.table->measured_error().max_state_relative <= options.impact_accuracy)
