@@ -72,6 +72,14 @@ constexpr int kMaxYoung = 2;
 // A slip leaving zero whose rate there is below this grows like P^2 (its stick broke
 // at the edge of its cone), above it like P.
 constexpr double kLinearStart = 1e-9;
+// Newton steps on a young slip's direction (each two evaluations of order 0), per sweep
+// over the young slips (at most 4 sweeps, for two of them).
+constexpr int kMaxDirectionIterations = 20;
+// Lateral parts of the slips and sidespin below this, relative to the normal parts,
+// are rounding of a head-on impact.
+constexpr double kPlaneRounding = 1e-15;
+// A stick whose friction lies outside its cone by less than this fraction of mu holds.
+constexpr double kMarginRounding = 1e-12;
 #ifndef KREGI
 #define KREGI 0.5
 #endif
@@ -94,6 +102,14 @@ double poly_at(const double* c, int degree, double h) {
     a3 = a3 * h4 + c[4 * i + 3];
   }
   return (a0 + h * a1) + h2 * (a2 + h * a3);
+}
+
+// The polynomial c[0..degree] re-expanded about x0: out[j] is the coefficient of
+// (h - x0)^j (repeated synthetic division).
+void shift_to(const double* c, int degree, double x0, double* out) {
+  for (int j = 0; j <= degree; ++j) out[j] = c[j];
+  for (int i = 0; i < degree; ++i)
+    for (int k = degree - 1; k >= i; --k) out[k] += out[k + 1] * x0;
 }
 
 // The state at h from a step's series.
@@ -232,8 +248,10 @@ Settings Settings::from(double tolerance, int max_steps) {
 #else
   s.order = std::clamp(static_cast<int>(std::lround(0.5 + 1.25 * digits)), 6, kMaxOrder);
 #endif
-  s.zero_slip = 1e-2 * tolerance;
-  s.cross_slip = 1e-2 * tolerance;
+  // A slip within the tolerance of zero is zero (its sign is below what a step
+  // resolves): it sticks, or leaves zero anew.
+  s.zero_slip = tolerance;
+  s.cross_slip = tolerance;
   s.close_slip = std::min(1e-4, 0.1 * std::sqrt(tolerance));
   return s;
 }
@@ -407,42 +425,65 @@ void Integrator::General::rates(int k, double out[kState]) {
 // like P after all - so every young slip is tried as one growing like P first.
 bool Integrator::General::young_origin() {
   double rate[kState];
-  auto rate_of = [&](ContactSeries& Y, bool at_i, double angle, double* rx, double* ry) {
-    Y.ex[0] = std::cos(angle);
-    Y.ey[0] = std::sin(angle);
+  auto rate_of = [&](const ContactSeries& Y, double* rx, double* ry) {
     rates(0, rate);
+    const bool at_i = &Y == &c_[kI];
     *rx = rate[at_i ? kXI : kXC];
     *ry = rate[at_i ? kYI : kYC];
   };
-  double seed[kMaxYoung];
+  // Newton steps on the angle from the direction (ex[0], ey[0]); true when they end
+  // with the rate parallel to it and pointing away from zero (the rate is parallel
+  // to the direction opposite too: that is no solution).
+  auto newton = [&](ContactSeries& Y) {
+    double angle = std::atan2(Y.ey[0], Y.ex[0]);
+    double rx, ry;
+    for (int iter = 0; iter < kMaxDirectionIterations; ++iter) {
+      rate_of(Y, &rx, &ry);
+      const double f = cross(Y.ex[0], Y.ey[0], rx, ry);
+      if (std::abs(f) <= 4.0 * kEpsilon * norm(rx, ry)) break;
+      const double ex = Y.ex[0], ey = Y.ey[0], step = 1e-7;
+      Y.ex[0] = std::cos(angle + step);
+      Y.ey[0] = std::sin(angle + step);
+      double ax, ay;
+      rate_of(Y, &ax, &ay);
+      double delta = -f / ((cross(Y.ex[0], Y.ey[0], ax, ay) - f) / step);
+      if (!std::isfinite(delta)) {
+        Y.ex[0] = ex;
+        Y.ey[0] = ey;
+        break;
+      }
+      angle += std::clamp(delta, -0.5, 0.5);
+      Y.ex[0] = std::cos(angle);
+      Y.ey[0] = std::sin(angle);
+    }
+    rate_of(Y, &rx, &ry);
+    const double grow = rx * Y.ex[0] + ry * Y.ey[0];
+    return grow > kLinearStart && std::abs(cross(Y.ex[0], Y.ey[0], rx, ry)) <= 1e-9 * norm(rx, ry);
+  };
   for (int i = 0; i < young_count_; ++i) {
     ContactSeries& Y = c_[young_[i]];
     Y.ex[0] = Y.e0x;
     Y.ey[0] = Y.e0y;
-    seed[i] = std::atan2(Y.e0y, Y.e0x);
     Y.young = 1;
   }
-  const int sweeps = young_count_ > 1 ? 6 : 1;
-  double angle[kMaxYoung];
-  for (int i = 0; i < young_count_; ++i) angle[i] = seed[i];
+  // From the seed, then its opposite and the two perpendiculars (exact vectors: an
+  // exact axis stays exact); with two young slips, sweeps over both.
+  bool linear[kMaxYoung] = {};
+  const int sweeps = young_count_ > 1 ? 4 : 1;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     for (int i = 0; i < young_count_; ++i) {
       ContactSeries& Y = c_[young_[i]];
-      const bool at_i = young_[i] == kI;
-      for (int iter = 0; iter < 40; ++iter) {
-        double rx, ry, ax, ay;
-        rate_of(Y, at_i, angle[i], &rx, &ry);
-        const double f = cross(Y.ex[0], Y.ey[0], rx, ry);
-        if (std::abs(f) <= 4.0 * kEpsilon * norm(rx, ry)) break;
-        const double step = 1e-7;
-        rate_of(Y, at_i, angle[i] + step, &ax, &ay);
-        double delta = -f / ((cross(Y.ex[0], Y.ey[0], ax, ay) - f) / step);
-        if (!std::isfinite(delta)) break;
-        delta = std::clamp(delta, -0.5, 0.5);
-        angle[i] += delta;
-        Y.ex[0] = std::cos(angle[i]);
-        Y.ey[0] = std::sin(angle[i]);
-        if (std::abs(delta) <= 4.0 * kEpsilon) break;
+      const double sx = Y.e0x, sy = Y.e0y;
+      const double starts[5][2] = {{Y.ex[0], Y.ey[0]}, {sx, sy}, {-sx, -sy}, {-sy, sx}, {sy, -sx}};
+      linear[i] = false;
+      for (int k = sweep == 0 ? 1 : 0; k < 5 && !linear[i]; ++k) {
+        Y.ex[0] = starts[k][0];
+        Y.ey[0] = starts[k][1];
+        linear[i] = newton(Y);
+      }
+      if (!linear[i]) {
+        Y.ex[0] = sx;
+        Y.ey[0] = sy;
       }
     }
   }
@@ -455,15 +496,15 @@ bool Integrator::General::young_origin() {
     const double grow = rx * Y.ex[0] + ry * Y.ey[0];
     // Grows like P: its rate is along it, away from zero, and not within rounding of
     // zero (a stick that broke at the edge of its cone leaves a rate of that order).
-    const bool linear = grow > kLinearStart && std::abs(cross(Y.ex[0], Y.ey[0], rx, ry)) <= 1e-9 * size;
-    if (linear) {
+    if (linear[i] && grow > kLinearStart && std::abs(cross(Y.ex[0], Y.ey[0], rx, ry)) <= 1e-9 * size) {
       Y.e0x = Y.ex[0];
       Y.e0y = Y.ey[0];
       Y.r[0] = grow;
       Y.vx[0] = grow * Y.e0x;
       Y.vy[0] = grow * Y.e0y;
     } else {
-      if (it_.mode_[young_[i]].young != 2) return false;
+      // (A stick that fails only within rounding of its cone's edge leaves no linear
+      // growth either: such a slip too grows like P^2.)
       Y.young = 2;
       Y.ex[0] = Y.e0x;
       Y.ey[0] = Y.e0y;
@@ -676,6 +717,12 @@ Integrator::Integrator(const ScaledImpact& impact, const Constants& constants,
   q_[kW] = 0.0;
   q_[kP] = 0.0;
   uy_start_ = impact.incoming.uy;
+  // An impact within rounding of the head-on plane (no motion along the cushion, no
+  // sidespin) is solved in it: its lateral parts are rounding, and the series would
+  // carry them, amplified, up to the tolerance instead of keeping the plane's symmetry.
+  const double plane = std::max({1.0, std::abs(q_[kYI]), std::abs(q_[kYC])});
+  if (std::max({std::abs(q_[kXI]), std::abs(q_[kXC]), std::abs(q_[kOZ])}) <= kPlaneRounding * plane)
+    q_[kXI] = q_[kXC] = q_[kOZ] = 0.0;
   // A first guess of a step's length in P: the whole compression, about u_y / c.
   step_impulse_ = uy_start_ / g_.c;
   *out_ = ScaledOutcome{};
@@ -735,14 +782,21 @@ double Integrator::stick_margin_at(int contact, const double* q) const {
     return Direction{x / r, y / r};
   };
   const Friction f = friction_for(g_, {mode_[kI].stick, mode_[kC].stick}, dir(kI), dir(kC));
-  return contact == kI ? stick_margin_i(g_, f) : stick_margin_c(g_, f);
+  return margin_of(contact, f);
+}
+
+// How far a stick's friction lies inside its cone (impact_model.hpp), with the cone
+// widened by rounding: a stick at the edge within 1e-12 of mu holds.
+double Integrator::margin_of(int contact, const Friction& f) const {
+  return contact == kI ? stick_margin_i(g_, f) + kMarginRounding * g_.mu_w
+                       : stick_margin_c(g_, f) + kMarginRounding * g_.mu_s;
 }
 
 bool Integrator::stick_would_hold(int contact) const {
   Modes m{mode_[kI].stick, mode_[kC].stick};
   (contact == kI ? m.stick_i : m.stick_c) = true;
   const Friction f = friction_for(g_, m, direction(kI), direction(kC));
-  return contact == kI ? stick_margin_i(g_, f) >= 0.0 : stick_margin_c(g_, f) >= 0.0;
+  return margin_of(contact, f) >= 0.0;
 }
 
 // Cancels the small slip at one contact with the friction impulse J that zeroes it,
@@ -834,8 +888,8 @@ void Integrator::settle_modes(bool force_slip_i, bool force_slip_c) {
       if (yc) tc = against(held.cx, held.cy, dc);
     }
     const Friction f = friction_for(g_, m, ti, tc);
-    const bool ok_i = !m.stick_i || stick_margin_i(g_, f) >= 0.0;
-    const bool ok_c = !m.stick_c || stick_margin_c(g_, f) >= 0.0;
+    const bool ok_i = !m.stick_i || margin_of(kI, f) >= 0.0;
+    const bool ok_c = !m.stick_c || margin_of(kC, f) >= 0.0;
     if (ok_i && ok_c) {
       chosen = m;
       young_i = ti;
@@ -873,10 +927,19 @@ Kernel Integrator::plan_step() {
     const double dx = rate[2 * i], dy = rate[2 * i + 1];
     const double r = norm(x, y), speed = norm(dx, dy);
     const double closing = -(x * dx + y * dy) / r;  // -d|u|/dP
-    // Heading straight for zero within reach: step in P and land on the root.
+    // Heading straight for zero within reach: step in P and land on the root - unless
+    // it is there within rounding of its rate, where the quotient u / |u| would divide
+    // rounding by rounding (regularised, it is zeroed as it falls below cross_slip).
     const bool straight = closing > 0.0 && r < 3.0 * closing * step_impulse_ &&
+                          r > 1e-10 * closing * uy_start_ / g_.c &&
                           std::abs(cross(x, y, dx, dy)) <= set_.cross_slip * speed;
-    if (straight)
+    // (A contact without friction is never regularised: nothing there depends on its
+    // slip, and in P its rates are constant, its series exact.)
+    const bool friction = (i == kI ? g_.mu_w : g_.mu_s) > 0.0;
+#ifdef TAYLOR_DEBUG
+    if (steps_ % 1000 == 999) std::fprintf(stderr, "  plan contact %d: u (%.3e, %.3e) rate (%.3e %.3e) closing %.3e straight %d P-scale %.3e\n", i, x, y, dx, dy, closing, straight, uy_start_ / g_.c);
+#endif
+    if (straight || !friction)
       plan_.reg[i] = false;
     else
       plan_.reg[i] = i == kC || r < kRegI * speed * uy_start_ / g_.c;
@@ -890,19 +953,26 @@ long g_count[8];
 long g_limit[kState];
 #endif
 void Integrator::take_planned_step() {
-#ifdef TAYLOR_COUNT
-  g_count[plan_.young ? 0 : 1 + plan_.reg[0] + 2 * plan_.reg[1] + 4 * (mode_[0].stick || mode_[1].stick)]++;
-#endif
-  Coefficients<double> s;
-  for (int q = 0; q < kState; ++q) s.c[q][0] = q_[q];
-  General general(*this, s);
-  const int evaluations = general.run(set_.order);
-  if (evaluations < 0) {
-    fail("Taylor integrator found no direction for a slip growing from zero");
-    return;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    Coefficients<double> s;
+    for (int q = 0; q < kState; ++q) s.c[q][0] = q_[q];
+    General general(*this, s);
+    const int evaluations = general.run(set_.order);
+    if (evaluations >= 0) {
+      out_->rhs_evaluations += evaluations;
+      take_step(s, set_.order);
+      return;
+    }
+    // A slip that cannot leave zero at all (its stick fails only within rounding):
+    // the contact sticks.
+    for (int i = 0; i < 2; ++i)
+      if (slipping(i) && mode_[i].young) {
+        mode_[i] = ContactMode{true, 0, mode_[i].seed};
+        out_->add_transition(i == kI ? Contact::cushion : Contact::table, true, q_[kP]);
+      }
+    plan_step();  // (the general kernel takes any kind of step)
   }
-  out_->rhs_evaluations += evaluations;
-  take_step(s, set_.order);
+  fail("Taylor integrator found no direction for a slip growing from zero");
 }
 
 #ifdef TAYLOR_COUNT
@@ -940,25 +1010,46 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   const double rho = s.c[kP][1];
   const double wnd = worst_normal_deceleration(g_);
   const double uy = (q_[kYC] - q_[kYI]) * k_.inv_1ps;
+  // (Restitution then lasts at most e sqrt(2) times as long, W falling like P^2.)
   const double remaining =
-      compressing_ ? std::max(uy, 0.0) / wnd
+      compressing_ ? 2.5 * std::max(uy, 0.0) / wnd
                    : std::sqrt(2.0 * std::max(q_[kW] - work_target_, 0.0) / (g_.c * wnd)) +
                          std::max(uy, 0.0) / wnd;
   if (rho > 0.0) h = std::min(h, 2.0 * remaining / rho + 1e-300);
   if (!(h > 0.0) || !std::isfinite(h)) {
+#ifdef TAYLOR_DEBUG
+    std::fprintf(stderr, "no usable step: h %g rho %g remaining %g uy %g reg %d%d |uI| %g |uC| %g young %d%d stick %d%d\n", h, rho, remaining, uy, plan_.reg[0], plan_.reg[1], slip_size(kI), slip_size(kC), mode_[0].young, mode_[1].young, mode_[0].stick, mode_[1].stick);
+    for (int c = 0; c < kState; ++c) { std::fprintf(stderr, "  series %d:", c); for (int j = 0; j <= n + 1; ++j) std::fprintf(stderr, " %.2e", s.c[c][j]); std::fprintf(stderr, "\n"); }
+#endif
     fail("Taylor integrator found no usable step");
     return;
   }
   step_impulse_ = h * rho;
 
-  // Events: the first root on the step's polynomials.
-  enum Event { kCompressionEnd, kImpactEnd, kSlipZeroI, kSlipZeroC, kBreakI, kBreakC, kEvents };
+  // Events: the first root on the step's polynomials. The end of compression does
+  // not change the equations, so the step goes on through it; from there the work of
+  // restitution is the series of W expanded about that point less its value there,
+  // accurate even when it is a tiny fraction of W_c (e small).
+  enum Event { kImpactEnd, kSlipZeroI, kSlipZeroC, kBreakI, kBreakC, kEvents };
   double when[kEvents];
   std::fill(when, when + kEvents, INFINITY);
   double poly[kTerms] = {};
+  double compression_end = INFINITY, work_c = 0.0, impulse_c = 0.0;
+  double rest[kTerms] = {};  // work since the end of compression, about it
   if (compressing_) {
     for (int j = 0; j <= deg; ++j) poly[j] = (s.c[kYC][j] - s.c[kYI][j]) * k_.inv_1ps;
-    if (poly_at(poly, deg, h) <= 0.0) when[kCompressionEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
+    if (poly_at(poly, deg, h) <= 0.0) {
+      compression_end = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
+      work_c = poly_at(s.c[kW], deg, compression_end);
+      impulse_c = poly_at(s.c[kP], deg, compression_end);
+      shift_to(s.c[kW], deg, compression_end, rest);
+      rest[0] = 0.0;
+      for (int j = 0; j <= deg; ++j) poly[j] = rest[j];
+      poly[0] += e_ * e_ * work_c;  // W_rest + e^2 W_c, zero at the end of the impact
+      const double left = h - compression_end;
+      if (left > 0.0 && poly_at(poly, deg, left) <= 0.0)
+        when[kImpactEnd] = compression_end + root_in(poly, deg, left);
+    }
   } else {
     for (int j = 0; j <= deg; ++j) poly[j] = s.c[kW][j];
     poly[0] -= work_target_;
@@ -975,6 +1066,9 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
       if (poly_at(poly, deg, h) <= 0.0) {
         const double at = root_in(poly, deg, h);
         const double across = -ey * poly_at(s.c[ix], deg, at) + ex * poly_at(s.c[iy], deg, at);
+#ifdef TAYLOR_DEBUG
+        std::fprintf(stderr, "  contact %d projection root %.6g of h %.6g, across %.3g\n", i, at, h, across);
+#endif
         if (std::abs(across) <= set_.cross_slip) when[kSlipZeroI + i] = at;
       }
     } else if (!slipping(i)) {
@@ -985,6 +1079,9 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
         return stick_margin_at(i, q);
       };
       const double m0 = stick_margin_at(i, q_);
+#ifdef TAYLOR_DEBUG
+      std::fprintf(stderr, "  stick margin %d at start %.3e\n", i, m0);
+#endif
       if (m0 < 0.0)
         when[kBreakI + i] = 0.0;
       else if (margin(h) < 0.0)
@@ -998,6 +1095,7 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   std::fprintf(stderr, "step %d p %.6g h %.3g end %.3g rho %.3g reg %d%d stick %d%d young %d%d |uI| %.3g |uC| %.3g comp %d events", steps_, q_[kP], h, end, rho,
                plan_.reg[0], plan_.reg[1], mode_[0].stick, mode_[1].stick, mode_[0].young, mode_[1].young, slip_size(kI), slip_size(kC), compressing_);
   for (double w : when) std::fprintf(stderr, " %.3g", w);
+  std::fprintf(stderr, " compression end %.3g ux %.3e xI %.3e xC %.3e oz %.3e", compression_end, centroid().ux, q_[kXI], q_[kXC], q_[kOZ]);
   std::fprintf(stderr, "\n");
 #endif
 
@@ -1012,13 +1110,14 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   if (end > 0.0)
     for (ContactMode& m : mode_) m.young = 0;
 
-  if (at_end(kCompressionEnd)) {
+  const bool compression_ended = compression_end <= end * (1.0 + 1e-12);
+  if (compression_ended) {
     compressing_ = false;
-    out_->impulse_compression = q_[kP];
-    work_compression_ = q_[kW];
-    out_->work_compression = work_compression_;
-    work_target_ = -e_ * e_ * work_compression_;
-    q_[kW] = 0.0;
+    out_->impulse_compression = impulse_c;
+    work_compression_ = work_c;
+    out_->work_compression = work_c;
+    work_target_ = -e_ * e_ * work_c;
+    q_[kW] = end > compression_end ? poly_at(rest, deg, end - compression_end) : 0.0;
   }
   if (at_end(kImpactEnd)) {
     done_ = true;
@@ -1045,8 +1144,14 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
       q_[i == kI ? kXI : kXC] = 0.0;
       q_[i == kI ? kYI : kYC] = 0.0;
       settle = true;
-    } else if (r <= set_.close_slip && !at_end(kCompressionEnd) && stick_would_hold(i)) {
+    } else if (r <= set_.close_slip && stick_would_hold(i)) {
       if (close_slip(i)) settle = true;
+#ifdef TAYLOR_DEBUG
+      else std::fprintf(stderr, "  close refused, contact %d r %g uy %g\n", i, r, centroid().uy);
+#endif
+#ifdef TAYLOR_DEBUG
+    } else if (r <= set_.close_slip && (std::fprintf(stderr, "  contact %d small r %g, stick would not hold\n", i, r), false)) {
+#endif
     } else if (r <= set_.cross_slip) {
       q_[i == kI ? kXI : kXC] = 0.0;
       q_[i == kI ? kYI : kYC] = 0.0;

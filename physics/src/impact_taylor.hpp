@@ -68,6 +68,7 @@ class Integrator {
   Direction direction(int contact) const;
   bool stick_would_hold(int contact) const;
   double stick_margin_at(int contact, const double* q) const;
+  double margin_of(int contact, const Friction& f) const;
   bool close_slip(int contact);
   void settle_modes(bool force_slip_i, bool force_slip_c);
   void take_step(const Coefficients<double>& s, int order);
