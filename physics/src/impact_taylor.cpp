@@ -58,12 +58,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#ifdef TAYLOR_DEBUG
+#if defined(TAYLOR_DEBUG) || defined(TAYLOR_ROOTS)
 #include <cstdio>
 #endif
 
 namespace cueplan::physics::detail {
 namespace taylor {
+#ifdef TAYLOR_COUNT
+long g_root_iters, g_roots;
+#endif
 namespace {
 
 constexpr int kI = 0, kC = 1;
@@ -117,23 +120,40 @@ void state_at(const Coefficients<double>& s, int degree, double h, double q[kSta
   for (int c = 0; c < kState; ++c) q[c] = poly_at(s.c[c], degree, h);
 }
 
-// A root in (0, h] of the polynomial c with c(0) > 0 >= c(h): Newton steps kept
-// inside the bracket, bisection where they leave it.
+// A root in (0, h] of the polynomial c with c(0) > 0 >= c(h), to 1e-15 of h (the
+// state moves by less than that fraction of the step): Newton steps kept inside the
+// bracket, the secant of the bracket where they leave it.
 double root_in(const double* c, int degree, double h) {
+#ifdef TAYLOR_COUNT
+  ++g_roots;
+#endif
   double slope_c[kTerms];
   for (int j = 1; j <= degree; ++j) slope_c[j - 1] = j * c[j];
-  double lo = 0.0, hi = h;
-  const double f0 = c[0], fh = poly_at(c, degree, h);
-  double x = (f0 - fh) > 0.0 ? hi * f0 / (f0 - fh) : 0.5 * hi;
-  if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
-  for (int iter = 0; iter < 100; ++iter) {
+  double lo = 0.0, hi = h, f_lo = c[0], f_hi = poly_at(c, degree, h);
+  if (!(f_hi < f_lo)) return hi;
+  double x = hi * f_lo / (f_lo - f_hi);
+  const double enough = 1e-15 * h;
+  for (int iter = 0; iter < 60; ++iter) {
+#ifdef TAYLOR_COUNT
+    ++g_root_iters;
+#endif
     const double f = poly_at(c, degree, x);
+#ifdef TAYLOR_ROOTS
+    std::fprintf(stderr, "    root iter %d x/h %.17g f %.3e lo %.6g hi %.6g\n", iter, x / h, f, lo / h, hi / h);
+#endif
     if (f == 0.0) return x;
-    (f > 0.0 ? lo : hi) = x;
-    const double slope = poly_at(slope_c, degree - 1, x);
-    double next = x - f / slope;
+    if (f > 0.0) {
+      lo = x;
+      f_lo = f;
+    } else {
+      hi = x;
+      f_hi = f;
+    }
+    double next = x - f / poly_at(slope_c, degree - 1, x);
+    if (std::abs(next - x) <= enough) return std::clamp(next, lo, hi);
+    if (!(next > lo && next < hi)) next = lo + (hi - lo) * f_lo / (f_lo - f_hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - x) <= 2.0 * kEpsilon * x || hi - lo <= 2.0 * kEpsilon * hi) return next;
+    if (hi - lo <= enough) return next;
     x = next;
   }
   return hi;
@@ -151,11 +171,11 @@ double inverse_root(double x, int n) {
   const double t = m - 1.0;  // log2(1 + t), t in [0, 1)
   const double log2m =
       t * (1.4425449 + t * (-0.7181452 + t * (0.4575485 + t * (-0.2779042 + t * 0.0958945))));
-  const double y = -(exponent + log2m) / n;
-  const double whole = std::floor(y);
+  const double y = -(exponent + log2m) / n;  // |y| < 1000 / n
+  const int whole = static_cast<int>(y + 1100.0) - 1100;  // floor(y)
   const double f = y - whole;  // 2^f, f in [0, 1)
   const double p = 1.0 + f * (0.6931472 + f * (0.2402265 + f * (0.0555041 + f * (0.0096181 + f * 0.0013333))));
-  return std::ldexp(p, static_cast<int>(whole));
+  return p * std::bit_cast<double>(static_cast<uint64_t>(whole + 1023) << 52);
 }
 
 // |(x, y)| (the slips and frictions here are far from overflow and underflow).
@@ -991,10 +1011,13 @@ void Integrator::finish_fast_step(const Coefficients<double>& series) {
 double Integrator::step_size(const Coefficients<double>& s, int n) const {
   double worst_n = 0.0, worst_n1 = 0.0;
   for (int q = 0; q < kState; ++q) {
-    const double scale = 1.0 / std::max(set_.tolerance, 4.0 * kEpsilon * std::abs(s.c[q][0]));
+    const double floor = 4.0 * kEpsilon * std::abs(s.c[q][0]);
+    const double scale = floor > set_.tolerance ? set_.tolerance / floor : 1.0;
     worst_n = std::max(worst_n, std::abs(s.c[q][n]) * scale);
     worst_n1 = std::max(worst_n1, std::abs(s.c[q][n + 1]) * scale);
   }
+  worst_n /= set_.tolerance;
+  worst_n1 /= set_.tolerance;
   double h = INFINITY;
   if (worst_n > 0.0) h = std::min(h, inverse_root(worst_n, n));
   if (worst_n1 > 0.0) h = std::min(h, inverse_root(worst_n1, n + 1));
@@ -1036,9 +1059,13 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   double poly[kTerms] = {};
   double compression_end = INFINITY, work_c = 0.0, impulse_c = 0.0;
   double rest[kTerms] = {};  // work since the end of compression, about it
+  // The state at the step's full length: where no event function changes sign on it,
+  // that is where the step ends.
+  double at_h[kState];
+  state_at(s, deg, h, at_h);
   if (compressing_) {
     for (int j = 0; j <= deg; ++j) poly[j] = (s.c[kYC][j] - s.c[kYI][j]) * k_.inv_1ps;
-    if (poly_at(poly, deg, h) <= 0.0) {
+    if ((at_h[kYC] - at_h[kYI]) * k_.inv_1ps <= 0.0) {
       compression_end = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
       work_c = poly_at(s.c[kW], deg, compression_end);
       impulse_c = poly_at(s.c[kP], deg, compression_end);
@@ -1050,10 +1077,10 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
       if (left > 0.0 && poly_at(poly, deg, left) <= 0.0)
         when[kImpactEnd] = compression_end + root_in(poly, deg, left);
     }
-  } else {
+  } else if (at_h[kW] - work_target_ <= 0.0) {
     for (int j = 0; j <= deg; ++j) poly[j] = s.c[kW][j];
     poly[0] -= work_target_;
-    if (poly_at(poly, deg, h) <= 0.0) when[kImpactEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
+    when[kImpactEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
   }
   for (int i = 0; i < 2; ++i) {
     const int ix = i == kI ? kXI : kXC, iy = i == kI ? kYI : kYC;
@@ -1062,8 +1089,8 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
       // direction does, and it is zero there (else it only passes by).
       const double r0 = std::sqrt(q_[ix] * q_[ix] + q_[iy] * q_[iy]);
       const double ex = q_[ix] / r0, ey = q_[iy] / r0;
-      for (int j = 0; j <= deg; ++j) poly[j] = ex * s.c[ix][j] + ey * s.c[iy][j];
-      if (poly_at(poly, deg, h) <= 0.0) {
+      if (ex * at_h[ix] + ey * at_h[iy] <= 0.0) {
+        for (int j = 0; j <= deg; ++j) poly[j] = ex * s.c[ix][j] + ey * s.c[iy][j];
         const double at = root_in(poly, deg, h);
         const double across = -ey * poly_at(s.c[ix], deg, at) + ex * poly_at(s.c[iy], deg, at);
 #ifdef TAYLOR_DEBUG
@@ -1084,7 +1111,7 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
 #endif
       if (m0 < 0.0)
         when[kBreakI + i] = 0.0;
-      else if (margin(h) < 0.0)
+      else if (stick_margin_at(i, at_h) < 0.0)
         when[kBreakI + i] = sign_change(margin, 0.0, m0, h);
     }
   }
@@ -1100,7 +1127,10 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
 #endif
 
   record_trace(&s, n, end);
-  state_at(s, deg, end, q_);
+  if (end == h)
+    std::copy(at_h, at_h + kState, q_);
+  else
+    state_at(s, deg, end, q_);
   for (int i = 0; i < 2; ++i)
     if (!slipping(i)) {
       q_[i == kI ? kXI : kXC] = 0.0;
@@ -1205,13 +1235,20 @@ void Integrator::fail(const char* why) {
   out_->failure = why;
 }
 
-void Integrator::run() {
-  Coefficients<double> s;
+void fast_series(Kernel kernel, const Constants& constants, int order, Coefficients<double>& s) {
 #ifdef TAYLOR_NO_AVX
   const bool avx2 = false;
 #else
   const bool avx2 = __builtin_cpu_supports("avx2");
 #endif
+  if (kernel == Kernel::tau)
+    (avx2 ? tau_avx2 : tau_sse2)(constants, order, s);
+  else
+    (avx2 ? sigma_avx2 : sigma_sse2)(constants, order, s);
+}
+
+void Integrator::run() {
+  Coefficients<double> s;
   while (!done_) {
     const Kernel kernel = plan_step();
     if (kernel == Kernel::general) {
@@ -1219,10 +1256,7 @@ void Integrator::run() {
       continue;
     }
     for (int q = 0; q < kState; ++q) s.c[q][0] = q_[q];
-    if (kernel == Kernel::tau)
-      (avx2 ? tau_avx2 : tau_sse2)(k_, set_.order, s);
-    else
-      (avx2 ? sigma_avx2 : sigma_sse2)(k_, set_.order, s);
+    fast_series(kernel, k_, set_.order, s);
     finish_fast_step(s);
   }
   finish();

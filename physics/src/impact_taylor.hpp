@@ -26,6 +26,10 @@ struct Settings {
 // or in sigma; impact_taylor_series.hpp) or the general one (impact_taylor.cpp).
 enum class Kernel { tau, sigma, general };
 
+// The series of a fast step of one impact (its state in s.c[.][0]), in SSE2 or, where
+// the CPU has it, AVX2 - bit for bit the same either way.
+void fast_series(Kernel kernel, const Constants& constants, int order, Coefficients<double>& s);
+
 // One impact, step by step. A step computes the state's Taylor series in the step's
 // variable, chooses its length from the series, and ends early on the first event
 // (a root of one of the step's polynomials).

@@ -85,17 +85,29 @@ void run_lanes(const Constants& constants, const Settings& settings, const Scale
       if (kinds[i] == Kernel::general) lane[i]->take_planned_step();
     }
     if (!any) break;
-    // One vector call for the lanes of each fast kernel; idle lanes repeat a busy
-    // one's state (same work, nothing read back).
+    // One vector call for the lanes of each fast kernel (idle lanes repeat a busy
+    // one's state: same work, nothing read back) - or, for fewer than a quarter of
+    // the lanes, the one-impact kernel each: cheaper than a mostly idle vector.
     for (Kernel kind : {Kernel::tau, Kernel::sigma}) {
-      int first = -1;
+      int first = -1, busy = 0;
+      for (int i = 0; i < L; ++i) busy += kinds[i] == kind;
+      if (busy == 0) continue;
+      if (4 * busy < L) {
+        for (int i = 0; i < L; ++i) {
+          if (kinds[i] != kind) continue;
+          const double* q = lane[i]->state();
+          for (int c = 0; c < kState; ++c) single.c[c][0] = q[c];
+          fast_series(kind, constants, n, single);
+          lane[i]->finish_fast_step(single);
+        }
+        continue;
+      }
       for (int i = 0; i < L; ++i)
         if (kinds[i] == kind) {
           if (first < 0) first = i;
           const double* q = lane[i]->state();
           for (int c = 0; c < kState; ++c) packed.c[c][0][i] = q[c];
         }
-      if (first < 0) continue;
       for (int i = 0; i < L; ++i)
         if (kinds[i] != kind)
           for (int c = 0; c < kState; ++c) packed.c[c][0][i] = packed.c[c][0][first];
