@@ -7,10 +7,13 @@
 // o_y = (x_I - x_C + c o_z) / (1 + s), u_x = x_C + o_y. A sticking contact's slip is
 // held at exactly zero and not integrated.
 //
-// Steps. Each step computes the state's Taylor coefficients to order N by the
-// recurrences of Taylor-mode arithmetic (products, square roots, quotients), chooses
-// its length from the last two coefficients, h = min_j (tol / |X_j|)^(1/j), and ends
-// early at the first event, a root of one of the step's polynomials.
+// Steps. Each step computes the state's Taylor coefficients to order N (16 at the
+// default tolerance 1e-12) by the recurrences of Taylor-mode arithmetic (products,
+// square roots, quotients), chooses its length from the last two coefficients,
+// h = min_j (tol / |X_j|)^(1/j), and ends early at the first event, a root of one of
+// the step's polynomials. In order, a step: plans its variable and kernel
+// (plan_step), computes its series (a fast kernel or General::run), then take_step:
+// its length, its events, the state at its end, and the modes that follow.
 //
 // Variable. A step's variable sigma has dP/dsigma = |u_C|^a |u_I|^b:
 //   - a = 1 whenever the cloth slips: that contact is isotropic, so in tau (dP/dtau =
@@ -26,15 +29,16 @@
 //     root of |u| continued analytically through zero: the step lands on it.
 //
 // Events, each a root on the step's polynomials:
-//   - end of compression, u_y = 0 (eq. 16c), and end of the impact, W = -e^2 W_c with W
-//     counted from the end of compression (eq. 16b in the form W_total = (1 - e^2) W_c,
-//     accurate when e is small and W_total is within rounding of W_c);
+//   - end of compression, u_y = 0 (eq. 16c), which changes nothing in the equations: the
+//     step goes on through it, and the work of restitution is counted from there (the
+//     series of W re-expanded about it), so that the end of the impact, W = -e^2 W_c
+//     (eq. 16b as W_total = (1 - e^2) W_c), keeps full precision when e is small;
 //   - a slip stepped in P reaching zero; the contact then sticks if the friction that
 //     keeps it stuck lies in its cone (the Filippov solution), else it slips on;
-//   - a stick breaking: its stick margin mu^2 p^2 - |f|^2 reaching zero.
+//   - a stick breaking: its stick margin mu p_C - |f| (from the state) reaching zero.
 // A slip whose contact could stick and that is below close_slip is closed at once by
-// the friction impulse that cancels it (error of order slip^2); one that cannot stick
-// and falls below cross_slip while heading for zero has crossed it.
+// the friction impulse that cancels it (error of order slip^2); one within the
+// tolerance of zero is zero (it sticks, or leaves zero anew).
 //
 // Slips growing from zero. At natural roll (the cloth slip starts at zero), after a
 // slip has crossed zero or after a stick breaks, the slip's direction is not given by
@@ -45,9 +49,10 @@
 // its coefficients follow from the rates' order-k coefficient, which is affine in v's
 // unknown top coefficients: each order solves a small linear system.
 //
-// The commonest step (both contacts slipping, in tau) has its own kernel
-// (impact_taylor_series.hpp), shared with the SIMD lanes of resolve_impacts; every
-// other step uses the general kernel below.
+// The two commonest steps (both contacts slipping, in tau or in sigma) have their own
+// kernels (impact_taylor_series.hpp), shared with the SIMD lanes of resolve_impacts;
+// every other step uses the general kernel below.
+
 // Vectors of four doubles pass between the kernels' inlined helpers only.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -58,15 +63,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#if defined(TAYLOR_DEBUG) || defined(TAYLOR_ROOTS)
-#include <cstdio>
-#endif
 
 namespace cueplan::physics::detail {
 namespace taylor {
-#ifdef TAYLOR_COUNT
-long g_root_iters, g_roots;
-#endif
 namespace {
 
 constexpr int kI = 0, kC = 1;
@@ -83,10 +82,9 @@ constexpr int kMaxDirectionIterations = 20;
 constexpr double kPlaneRounding = 1e-15;
 // A stick whose friction lies outside its cone by less than this fraction of mu holds.
 constexpr double kMarginRounding = 1e-12;
-#ifndef KREGI
-#define KREGI 0.5
-#endif
-constexpr double kRegI = KREGI;
+// The cushion slip is regularised while it is below this fraction of its rate times
+// the compression's impulse (about u_y / c): small against its rate of change.
+constexpr double kRegI = 0.3;
 
 // The polynomial c[0..degree] at h, as four interleaved Horner chains in h^4 (the
 // coefficients of each residue of the power mod 4): a quarter of Horner's chain of
@@ -124,9 +122,6 @@ void state_at(const Coefficients<double>& s, int degree, double h, double q[kSta
 // state moves by less than that fraction of the step): Newton steps kept inside the
 // bracket, the secant of the bracket where they leave it.
 double root_in(const double* c, int degree, double h) {
-#ifdef TAYLOR_COUNT
-  ++g_roots;
-#endif
   double slope_c[kTerms];
   for (int j = 1; j <= degree; ++j) slope_c[j - 1] = j * c[j];
   double lo = 0.0, hi = h, f_lo = c[0], f_hi = poly_at(c, degree, h);
@@ -134,13 +129,7 @@ double root_in(const double* c, int degree, double h) {
   double x = hi * f_lo / (f_lo - f_hi);
   const double enough = 1e-15 * h;
   for (int iter = 0; iter < 60; ++iter) {
-#ifdef TAYLOR_COUNT
-    ++g_root_iters;
-#endif
     const double f = poly_at(c, degree, x);
-#ifdef TAYLOR_ROOTS
-    std::fprintf(stderr, "    root iter %d x/h %.17g f %.3e lo %.6g hi %.6g\n", iter, x / h, f, lo / h, hi / h);
-#endif
     if (f == 0.0) return x;
     if (f > 0.0) {
       lo = x;
@@ -263,11 +252,7 @@ Settings Settings::from(double tolerance, int max_steps) {
   s.max_steps = max_steps;
   // Order: about 1.25 per decimal digit asked (16 at 1e-12), within [6, kMaxOrder].
   const double digits = -std::log10(tolerance);
-#ifdef KORDER
-  s.order = KORDER;
-#else
   s.order = std::clamp(static_cast<int>(std::lround(0.5 + 1.25 * digits)), 6, kMaxOrder);
-#endif
   // A slip within the tolerance of zero is zero (its sign is below what a step
   // resolves): it sticks, or leaves zero anew.
   s.zero_slip = tolerance;
@@ -533,9 +518,6 @@ bool Integrator::General::young_origin() {
     Y.nx = -Y.e0y;
     Y.ny = Y.e0x;
   }
-#ifdef TAYLOR_DEBUG
-  for (int i = 0; i < young_count_; ++i) std::fprintf(stderr, "young origin contact %d m %d e0 %g %g\n", young_[i], c_[young_[i]].young, c_[young_[i]].e0x, c_[young_[i]].e0y);
-#endif
   rates(0, rate);
   return true;
 }
@@ -655,10 +637,6 @@ bool Integrator::General::young_order(int k, double rate[kState]) {
     for (int c = 0; c < dim; ++c)
       for (int m = 0; m < dim; ++m) a[r][c] += jacobian_[r][m] * de[m][c];
   for (int r = 0; r < dim; ++r) b[r] = -res0[r];
-#ifdef TAYLOR_DEBUG
-  std::fprintf(stderr, "young_order k %d dim %d\n", k, dim);
-  for (int r = 0; r < dim; ++r) { for (int c = 0; c < dim; ++c) std::fprintf(stderr, " %10.3g", a[r][c]); std::fprintf(stderr, "  | %10.3g   J", b[r]); for (int c = 0; c < dim; ++c) std::fprintf(stderr, " %10.3g", jacobian_[r][c]); std::fprintf(stderr, "\n"); }
-#endif
   if (!solve_linear(dim, a, b, z)) return false;
   for (int i = 0; i < young_count_; ++i)
     if (c_[young_[i]].young == 2 && k == 1 && !(z[2 * i] > 0.0)) return false;  // not growing
@@ -956,9 +934,6 @@ Kernel Integrator::plan_step() {
     // (A contact without friction is never regularised: nothing there depends on its
     // slip, and in P its rates are constant, its series exact.)
     const bool friction = (i == kI ? g_.mu_w : g_.mu_s) > 0.0;
-#ifdef TAYLOR_DEBUG
-    if (steps_ % 1000 == 999) std::fprintf(stderr, "  plan contact %d: u (%.3e, %.3e) rate (%.3e %.3e) closing %.3e straight %d P-scale %.3e\n", i, x, y, dx, dy, closing, straight, uy_start_ / g_.c);
-#endif
     if (straight || !friction)
       plan_.reg[i] = false;
     else
@@ -968,10 +943,6 @@ Kernel Integrator::plan_step() {
   return plan_.reg[kI] ? Kernel::sigma : Kernel::tau;
 }
 
-#ifdef TAYLOR_COUNT
-long g_count[8];
-long g_limit[kState];
-#endif
 void Integrator::take_planned_step() {
   for (int attempt = 0; attempt < 2; ++attempt) {
     Coefficients<double> s;
@@ -995,13 +966,7 @@ void Integrator::take_planned_step() {
   fail("Taylor integrator found no direction for a slip growing from zero");
 }
 
-#ifdef TAYLOR_COUNT
-long f_count;
-#endif
 void Integrator::finish_fast_step(const Coefficients<double>& series) {
-#ifdef TAYLOR_COUNT
-  ++f_count;
-#endif
   out_->rhs_evaluations += set_.order + 1;
   take_step(series, set_.order);
 }
@@ -1040,10 +1005,6 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
                          std::max(uy, 0.0) / wnd;
   if (rho > 0.0) h = std::min(h, 2.0 * remaining / rho + 1e-300);
   if (!(h > 0.0) || !std::isfinite(h)) {
-#ifdef TAYLOR_DEBUG
-    std::fprintf(stderr, "no usable step: h %g rho %g remaining %g uy %g reg %d%d |uI| %g |uC| %g young %d%d stick %d%d\n", h, rho, remaining, uy, plan_.reg[0], plan_.reg[1], slip_size(kI), slip_size(kC), mode_[0].young, mode_[1].young, mode_[0].stick, mode_[1].stick);
-    for (int c = 0; c < kState; ++c) { std::fprintf(stderr, "  series %d:", c); for (int j = 0; j <= n + 1; ++j) std::fprintf(stderr, " %.2e", s.c[c][j]); std::fprintf(stderr, "\n"); }
-#endif
     fail("Taylor integrator found no usable step");
     return;
   }
@@ -1093,9 +1054,6 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
         for (int j = 0; j <= deg; ++j) poly[j] = ex * s.c[ix][j] + ey * s.c[iy][j];
         const double at = root_in(poly, deg, h);
         const double across = -ey * poly_at(s.c[ix], deg, at) + ex * poly_at(s.c[iy], deg, at);
-#ifdef TAYLOR_DEBUG
-        std::fprintf(stderr, "  contact %d projection root %.6g of h %.6g, across %.3g\n", i, at, h, across);
-#endif
         if (std::abs(across) <= set_.cross_slip) when[kSlipZeroI + i] = at;
       }
     } else if (!slipping(i)) {
@@ -1106,9 +1064,6 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
         return stick_margin_at(i, q);
       };
       const double m0 = stick_margin_at(i, q_);
-#ifdef TAYLOR_DEBUG
-      std::fprintf(stderr, "  stick margin %d at start %.3e\n", i, m0);
-#endif
       if (m0 < 0.0)
         when[kBreakI + i] = 0.0;
       else if (stick_margin_at(i, at_h) < 0.0)
@@ -1118,13 +1073,6 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   double end = h;
   for (double w : when) end = std::min(end, w);
   auto at_end = [&](int event) { return when[event] <= end * (1.0 + 1e-12); };
-#ifdef TAYLOR_DEBUG
-  std::fprintf(stderr, "step %d p %.6g h %.3g end %.3g rho %.3g reg %d%d stick %d%d young %d%d |uI| %.3g |uC| %.3g comp %d events", steps_, q_[kP], h, end, rho,
-               plan_.reg[0], plan_.reg[1], mode_[0].stick, mode_[1].stick, mode_[0].young, mode_[1].young, slip_size(kI), slip_size(kC), compressing_);
-  for (double w : when) std::fprintf(stderr, " %.3g", w);
-  std::fprintf(stderr, " compression end %.3g ux %.3e xI %.3e xC %.3e oz %.3e", compression_end, centroid().ux, q_[kXI], q_[kXC], q_[kOZ]);
-  std::fprintf(stderr, "\n");
-#endif
 
   record_trace(&s, n, end);
   if (end == h)
@@ -1176,12 +1124,6 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
       settle = true;
     } else if (r <= set_.close_slip && stick_would_hold(i)) {
       if (close_slip(i)) settle = true;
-#ifdef TAYLOR_DEBUG
-      else std::fprintf(stderr, "  close refused, contact %d r %g uy %g\n", i, r, centroid().uy);
-#endif
-#ifdef TAYLOR_DEBUG
-    } else if (r <= set_.close_slip && (std::fprintf(stderr, "  contact %d small r %g, stick would not hold\n", i, r), false)) {
-#endif
     } else if (r <= set_.cross_slip) {
       q_[i == kI ? kXI : kXC] = 0.0;
       q_[i == kI ? kYI : kYC] = 0.0;
@@ -1236,11 +1178,7 @@ void Integrator::fail(const char* why) {
 }
 
 void fast_series(Kernel kernel, const Constants& constants, int order, Coefficients<double>& s) {
-#ifdef TAYLOR_NO_AVX
-  const bool avx2 = false;
-#else
   const bool avx2 = __builtin_cpu_supports("avx2");
-#endif
   if (kernel == Kernel::tau)
     (avx2 ? tau_avx2 : tau_sse2)(constants, order, s);
   else
