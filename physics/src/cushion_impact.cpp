@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 
 #include "cueplan/physics/impact_table.hpp"
 #include "impact_methods.hpp"
@@ -213,61 +214,64 @@ ImpactResult invalid(std::string why) {
   return r;
 }
 
-// An impact made ready to solve, or already answered (invalid input, or the table).
+// An impact made ready to solve.
 struct Prepared {
-  bool answered = false;
-  ImpactResult result;  // when answered
   ImpactMethod method = ImpactMethod::exact;  // the method that solves it
   double tolerance = 0.0;
   detail::ScaledImpact impact;
 };
 
+// The exact method's tolerance: the options' own, or for the impacts the table does
+// not answer, the one asked for the table's fallbacks (0: matched to the table).
+double exact_tolerance(const ImpactOptions& options) {
+  if (options.method != ImpactMethod::table || options.table == nullptr) return options.tolerance;
+  return options.table_fallback_tolerance != 0.0 ? options.table_fallback_tolerance
+                                                 : options.table->fallback_tolerance();
+}
+
+double speed_scale(const BallState& incoming) {
+  return std::hypot(incoming.velocity.x, incoming.velocity.y);
+}
+
 // Stage 1 of resolve_impact: checks, the table's answer where it has one, the method
 // and tolerance to use, and the impact in scaled units. `params` has been validated.
-Prepared prepare(const CushionParams& params, const BallState& incoming,
-                 const ImpactOptions& options) {
-  Prepared prep;
-  auto answer = [&](ImpactResult r) {
-    prep.answered = true;
-    prep.result = std::move(r);
-    return prep;
-  };
-  if (std::string why = validate_state(incoming); !why.empty()) return answer(invalid(std::move(why)));
+// Returns the answer when there is one already (invalid input, or the table's);
+// otherwise fills *prep.
+std::optional<ImpactResult> prepare(const CushionParams& params, const BallState& incoming,
+                                    const ImpactOptions& options, Prepared* prep) {
+  if (std::string why = validate_state(incoming); !why.empty()) return invalid(std::move(why));
 
-  // The exact method's tolerance: its own, or for the impacts the table does not
-  // answer, the one asked for the table's fallbacks.
-  double tolerance = options.tolerance;
   const char* tolerance_field = "tolerance";
   if (options.method == ImpactMethod::table) {
-    if (options.table == nullptr) return answer(invalid("method table needs a built impact table"));
+    if (options.table == nullptr) return invalid("method table needs a built impact table");
     const double fallback = options.table_fallback_tolerance;
     if (fallback != 0.0 && !tolerance_in_range(fallback))
-      return answer(invalid(describe("table_fallback_tolerance",
-                                     "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
-                                     fallback)));
+      return invalid(describe("table_fallback_tolerance",
+                              "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
+                              fallback));
     ImpactResult r;
-    if (options.table->resolve(params, incoming, &r)) return answer(std::move(r));
+    if (options.table->resolve(params, incoming, &r)) return r;
     // Outside the table's domain or parameters, or a fallback cell: the exact method,
     // as accurate as the table.
-    tolerance = fallback != 0.0 ? fallback : options.table->fallback_tolerance();
     tolerance_field = "table_fallback_tolerance";
   }
+  const double tolerance = exact_tolerance(options);
   if (options.method == ImpactMethod::paper && options.paper_steps < 1)
-    return answer(invalid(describe("paper_steps", "must be at least 1", options.paper_steps)));
+    return invalid(describe("paper_steps", "must be at least 1", options.paper_steps));
   if (options.method != ImpactMethod::paper && !tolerance_in_range(tolerance))
-    return answer(invalid(describe(tolerance_field, "must lie in [1e-15, 1e-2]", tolerance)));
+    return invalid(describe(tolerance_field, "must lie in [1e-15, 1e-2]", tolerance));
 
-  prep.method = options.method == ImpactMethod::table ? ImpactMethod::exact : options.method;
-  prep.tolerance = tolerance;
-  detail::ScaledImpact& impact = prep.impact;
+  prep->method = options.method == ImpactMethod::table ? ImpactMethod::exact : options.method;
+  prep->tolerance = tolerance;
+  detail::ScaledImpact& impact = prep->impact;
   impact.geometry = detail::Geometry::from(params);
   impact.restitution = params.restitution;
-  impact.speed_scale = std::hypot(incoming.velocity.x, incoming.velocity.y);
+  impact.speed_scale = speed_scale(incoming);
   const double v = impact.speed_scale;
   const double o = params.radius / v;
   impact.incoming = {incoming.velocity.x / v, incoming.velocity.y / v, incoming.spin.x * o,
                      incoming.spin.y * o, incoming.spin.z * o};
-  return prep;
+  return std::nullopt;
 }
 
 // Stage 2: the method, in scaled units.
@@ -303,12 +307,57 @@ ImpactResult complete(const CushionParams& params, const BallState& incoming,
 ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
                             const ImpactOptions& options) {
   if (std::string why = params.validate(); !why.empty()) return invalid(std::move(why));
-  const Prepared prep = prepare(params, incoming, options);
-  if (prep.answered) return prep.result;
+  Prepared prep;
+  if (std::optional<ImpactResult> answer = prepare(params, incoming, options, &prep))
+    return std::move(*answer);
   const size_t trace_from = options.trace ? options.trace->size() : 0;
   const detail::ScaledOutcome out = solve(prep, options);
   return complete(params, incoming, prep, out, options.trace, trace_from);
 }
+
+namespace {
+
+// The impacts of a batch for the exact method's lanes, prepared one at a time as a
+// lane asks for one; every other impact (answered, invalid, another method) is
+// resolved on the way, in the order of the batch.
+class BatchSource final : public detail::BatchImpacts {
+ public:
+  BatchSource(const CushionParams& params, std::span<const BallState> in,
+              std::span<ImpactResult> out, const ImpactOptions& options)
+      : params_(params), in_(in), out_(out), options_(options) {}
+
+  bool next(detail::ScaledImpact* impact, size_t* id) override {
+    while (next_ < in_.size()) {
+      const size_t i = next_++;
+      Prepared prep;
+      if (std::optional<ImpactResult> answer = prepare(params_, in_[i], options_, &prep))
+        out_[i] = std::move(*answer);
+      else if (prep.method != ImpactMethod::exact)
+        out_[i] = complete(params_, in_[i], prep, solve(prep, options_), nullptr, 0);
+      else {
+        *impact = prep.impact;
+        *id = i;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void done(size_t id, const detail::ScaledOutcome& outcome) override {
+    Prepared prep;  // what complete reads of it: the method (exact) and the speed scale
+    prep.impact.speed_scale = speed_scale(in_[id]);
+    out_[id] = complete(params_, in_[id], prep, outcome, nullptr, 0);
+  }
+
+ private:
+  const CushionParams& params_;
+  std::span<const BallState> in_;
+  std::span<ImpactResult> out_;
+  const ImpactOptions& options_;
+  size_t next_ = 0;
+};
+
+}  // namespace
 
 // The same stages for many impacts; the exact method's share solved in SIMD lanes.
 void resolve_impacts(const CushionParams& params, std::span<const BallState> in,
@@ -325,28 +374,13 @@ void resolve_impacts(const CushionParams& params, std::span<const BallState> in,
     return refuse_all(describe("batch_lanes", "must be 0 (widest), 1, 2, 4 or 8", lanes));
   if (std::string why = params.validate(); !why.empty()) return refuse_all(why);
 
-  std::vector<Prepared> prepared(in.size());
-  std::vector<size_t> exact;  // the impacts the exact method solves, by index
-  for (size_t i = 0; i < in.size(); ++i) {
-    prepared[i] = prepare(params, in[i], options);
-    if (prepared[i].answered)
-      out[i] = std::move(prepared[i].result);
-    else if (prepared[i].method == ImpactMethod::exact)
-      exact.push_back(i);
-    else
-      out[i] = complete(params, in[i], prepared[i], solve(prepared[i], options), nullptr, 0);
-  }
-  if (exact.empty()) return;
-  std::vector<detail::ScaledImpact> impacts(exact.size());
-  for (size_t j = 0; j < exact.size(); ++j) impacts[j] = prepared[exact[j]].impact;
-  std::vector<detail::ScaledOutcome> outcomes(exact.size());
-  // One tolerance for the batch: the options' own, or the table's fallback one.
-  detail::solve_taylor_batch(impacts.data(), impacts.size(), prepared[exact[0]].tolerance,
-                             options.max_steps, lanes, outcomes.data());
-  for (size_t j = 0; j < exact.size(); ++j) {
-    const size_t i = exact[j];
-    out[i] = complete(params, in[i], prepared[i], outcomes[j], nullptr, 0);
-  }
+  // One tolerance for every impact the exact method solves: the options' own, or the
+  // table's fallback one. (Out of range, prepare refuses every impact: none is solved.)
+  const double tolerance = exact_tolerance(options);
+  BatchSource source(params, in, out, options);
+  detail::solve_taylor_batch(detail::Geometry::from(params),
+                             tolerance_in_range(tolerance) ? tolerance : 1e-12,
+                             options.max_steps, lanes, source);
 }
 
 }  // namespace cueplan::physics

@@ -134,12 +134,19 @@ struct Point {
 // point into out; at alpha = 0 its limit (the ball passes unchanged). NaN where the
 // exact method gave no usable answer, which makes every cell that needs the value
 // fall back. The impacts are resolved together (resolve_impacts: SIMD lanes), each
-// exactly as resolve_impact would.
-void exact_stored(const CushionParams& params, const std::vector<Point>& points, double* out) {
+// exactly as resolve_impact would, in buffers a build thread reuses.
+struct ExactBuffers {
   std::vector<BallState> incoming;
   std::vector<size_t> index;
-  incoming.reserve(points.size());
-  index.reserve(points.size());
+  std::vector<ImpactResult> results;
+};
+
+void exact_stored(const CushionParams& params, const std::vector<Point>& points, double* out,
+                  ExactBuffers& buffers) {
+  std::vector<BallState>& incoming = buffers.incoming;
+  std::vector<size_t>& index = buffers.index;
+  incoming.clear();
+  index.clear();
   for (size_t i = 0; i < points.size(); ++i) {
     const Point& pt = points[i];
     double* o = out + i * kStored;
@@ -156,7 +163,8 @@ void exact_stored(const CushionParams& params, const std::vector<Point>& points,
   }
   ImpactOptions options;
   options.tolerance = kNodeTolerance;
-  std::vector<ImpactResult> results(incoming.size());
+  std::vector<ImpactResult>& results = buffers.results;
+  results.resize(incoming.size());
   resolve_impacts(params, incoming, results, options);
   for (size_t j = 0; j < results.size(); ++j) {
     const ImpactResult& r = results[j];
@@ -548,14 +556,16 @@ struct ImpactTableAccess::Build {
   double coupling = 0.0, work_ratio = 0.0;
   int threads = 1;
   std::vector<Tally> tallies;  // one per build thread
+  std::vector<ExactBuffers> buffers;  // one per build thread
   // Exact outcomes at test points kept from one stage for the next: on the centres of
   // the cell faces normal to alpha (per alpha node), and on the natural-roll plane at
   // the midpoints of the cell edges along k_S (per alpha node).
   std::vector<double> alpha_faces;
   std::vector<double> alpha_edges;
 
-  void exact(const std::vector<Point>& points, double* out) const {
-    exact_stored(exact_params, points, out);
+  // The exact outcomes at points, on build thread `thread`.
+  void exact(const std::vector<Point>& points, double* out, int thread) {
+    exact_stored(exact_params, points, out, buffers[thread]);
   }
   static double mid(const ImpactTable::Axis& axis, int i) {
     return 0.5 * (axis.node(i) + axis.node(i + 1));
@@ -594,6 +604,7 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
                                            : static_cast<int>(std::thread::hardware_concurrency()),
                        1);
   b.tallies.resize(b.threads);
+  b.buffers.resize(b.threads);
 
   volume_nodes(b);
   volume_stencils(b);
@@ -621,8 +632,8 @@ void ImpactTableAccess::volume_nodes(Build& b) {
     for (int it = 0; it < nt - 1; ++it)
       for (int is = 0; is < ns - 1; ++is)
         faces.push_back({alpha, Build::mid(axes[1], it), Build::mid(axes[2], is)});
-    b.exact(nodes, &t.nodes_[ia * plane_nodes * kStored]);
-    b.exact(faces, &b.alpha_faces[ia * plane_cells * kStored]);
+    b.exact(nodes, &t.nodes_[ia * plane_nodes * kStored], id);
+    b.exact(faces, &b.alpha_faces[ia * plane_cells * kStored], id);
     b.tallies[id].test_points += static_cast<int64_t>(plane_cells);
   });
 }
@@ -650,9 +661,9 @@ void ImpactTableAccess::volume_stencils(Build& b) {
     }
     std::vector<double> centres(plane_cells * kStored), topspin_faces(nt * (ns - 1) * kStored),
         sidespin_faces((nt - 1) * ns * kStored);
-    b.exact(centre_points, centres.data());
-    b.exact(topspin_points, topspin_faces.data());
-    b.exact(sidespin_points, sidespin_faces.data());
+    b.exact(centre_points, centres.data(), id);
+    b.exact(topspin_points, topspin_faces.data(), id);
+    b.exact(sidespin_points, sidespin_faces.data(), id);
     tally.test_points += static_cast<int64_t>(plane_cells + nt * (ns - 1) + (nt - 1) * ns);
 
     for (int it = 0; it < nt - 1; ++it) {
@@ -709,8 +720,8 @@ void ImpactTableAccess::roll_nodes(Build& b) {
     std::vector<Point> nodes, edges;
     for (int is = 0; is < rs; ++is) nodes.push_back({alpha, 1.0, roll[1].node(is)});
     for (int is = 0; is < rs - 1; ++is) edges.push_back({alpha, 1.0, Build::mid(roll[1], is)});
-    b.exact(nodes, &t.roll_nodes_[static_cast<size_t>(ia) * rs * kStored]);
-    b.exact(edges, &b.alpha_edges[static_cast<size_t>(ia) * (rs - 1) * kStored]);
+    b.exact(nodes, &t.roll_nodes_[static_cast<size_t>(ia) * rs * kStored], id);
+    b.exact(edges, &b.alpha_edges[static_cast<size_t>(ia) * (rs - 1) * kStored], id);
     b.tallies[id].test_points += rs - 1;
   });
 }
@@ -730,8 +741,8 @@ void ImpactTableAccess::roll_stencils(Build& b) {
       edge_points.push_back({alpha, 1.0, roll[1].node(is)});
     }
     std::vector<double> centres((rs - 1) * kStored), sidespin_edges(rs * kStored);
-    b.exact(centre_points, centres.data());
-    b.exact(edge_points, sidespin_edges.data());
+    b.exact(centre_points, centres.data(), id);
+    b.exact(edge_points, sidespin_edges.data(), id);
     tally.test_points += 2 * rs - 1;
     for (int is = 0; is < rs - 1; ++is) {
       const int cell[2] = {ia, is};

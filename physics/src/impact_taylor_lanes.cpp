@@ -53,19 +53,18 @@ __attribute__((target("avx512f"))) void sigma_lanes_avx512(const Constants& k, i
 }
 
 template <int L, class Pack, LaneKernel<Pack> Tau, LaneKernel<Pack> Sigma>
-void run_lanes(const Constants& constants, const Settings& settings, const ScaledImpact* impacts,
-               size_t count, ScaledOutcome* out) {
+void run_lanes(const Constants& constants, const Settings& settings, BatchImpacts& impacts) {
   std::optional<Integrator> lane[L];
-  size_t next = 0;
-  auto load = [&](std::optional<Integrator>& it) {
-    if (next < count) {
-      it.emplace(impacts[next], constants, settings, nullptr, &out[next]);
-      ++next;
-    } else {
-      it.reset();
-    }
+  ScaledOutcome outcome[L];
+  size_t id[L] = {};
+  auto load = [&](int i) {
+    ScaledImpact impact;
+    if (impacts.next(&impact, &id[i]))
+      lane[i].emplace(impact, constants, settings, nullptr, &outcome[i]);
+    else
+      lane[i].reset();
   };
-  for (auto& it : lane) load(it);
+  for (int i = 0; i < L; ++i) load(i);
 
   const int n = settings.order;
   Coefficients<Pack> packed;
@@ -77,7 +76,8 @@ void run_lanes(const Constants& constants, const Settings& settings, const Scale
       kinds[i] = Kernel::general;
       while (lane[i] && lane[i]->done()) {
         lane[i]->finish();
-        load(lane[i]);
+        impacts.done(id[i], outcome[i]);
+        load(i);
       }
       if (!lane[i]) continue;
       any = true;
@@ -122,11 +122,14 @@ void run_lanes(const Constants& constants, const Settings& settings, const Scale
   }
 }
 
-void run_scalar(const Constants& constants, const Settings& settings, const ScaledImpact* impacts,
-                size_t count, ScaledOutcome* out) {
-  for (size_t i = 0; i < count; ++i) {
-    Integrator it(impacts[i], constants, settings, nullptr, &out[i]);
+void run_scalar(const Constants& constants, const Settings& settings, BatchImpacts& impacts) {
+  ScaledImpact impact;
+  size_t id = 0;
+  while (impacts.next(&impact, &id)) {
+    ScaledOutcome outcome;
+    Integrator it(impact, constants, settings, nullptr, &outcome);
     it.run();
+    impacts.done(id, outcome);
   }
 }
 
@@ -140,29 +143,27 @@ int widest_lanes() {
 
 }  // namespace taylor
 
-void solve_taylor_batch(const ScaledImpact* impacts, size_t count, double tolerance,
-                        int max_steps, int lanes, ScaledOutcome* out) {
-  if (count == 0) return;
-  // Every impact of a batch shares the geometry (one CushionParams).
-  const taylor::Constants constants = taylor::Constants::from(impacts[0].geometry);
+void solve_taylor_batch(const Geometry& geometry, double tolerance, int max_steps, int lanes,
+                        BatchImpacts& impacts) {
+  const taylor::Constants constants = taylor::Constants::from(geometry);
   const taylor::Settings settings = taylor::Settings::from(tolerance, max_steps);
   const int widest = taylor::widest_lanes();
   const int use = lanes == 0 ? widest : std::min(lanes, widest);
   switch (use) {
     case 1:
-      taylor::run_scalar(constants, settings, impacts, count, out);
+      taylor::run_scalar(constants, settings, impacts);
       break;
     case 2:
       taylor::run_lanes<2, taylor::Pack2, taylor::tau_lanes_sse2, taylor::sigma_lanes_sse2>(
-          constants, settings, impacts, count, out);
+          constants, settings, impacts);
       break;
     case 4:
       taylor::run_lanes<4, taylor::Pack4, taylor::tau_lanes_avx2, taylor::sigma_lanes_avx2>(
-          constants, settings, impacts, count, out);
+          constants, settings, impacts);
       break;
     default:
       taylor::run_lanes<8, taylor::Pack8, taylor::tau_lanes_avx512, taylor::sigma_lanes_avx512>(
-          constants, settings, impacts, count, out);
+          constants, settings, impacts);
       break;
   }
 }
