@@ -322,11 +322,14 @@ ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
   const auto lines = cushion_lines(scene);
 
   // The cheapest impact method that meets the accuracy asked for: the table where its
-  // measured error does, else the exact method at a tolerance that does (its error
-  // stays below about 100 tolerances, bench/README.md).
+  // measured error does, else an exact method at a tolerance that does. Over the
+  // uniform domain `exact` (also the table's fallback) errs by at most about 5
+  // tolerances, `extrapolation` by about 100 (bench/README.md): a tenth and a
+  // hundredth of the accuracy.
   ImpactOptions impact;
-  impact.tolerance = std::clamp(options.impact_accuracy / 100.0, 1e-14, 1e-3);
   impact.method = chosen_impact_method(scene, options);
+  const double tolerances = impact.method == ImpactMethod::extrapolation ? 100.0 : 10.0;
+  impact.tolerance = std::clamp(options.impact_accuracy / tolerances, 1e-14, 1e-3);
   if (impact.method == ImpactMethod::table) {
     impact.table = options.table;
     impact.table_fallback_tolerance = impact.tolerance;  // the accuracy asked for, as above
