@@ -13,8 +13,9 @@ namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr double kNever = std::numeric_limits<double>::infinity();
-// An approach speed below this fraction of the ball's speed at a cushion is rounding: the
-// ball is pressed against the cushion rather than bouncing.
+// An approach speed below this fraction of the ball's speed at a cushion that the cloth's
+// friction presses it into is the end of a run of ever smaller bounces: the ball is
+// pressed against the cushion.
 constexpr double kRoundingApproach = 1e-12;
 
 inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
@@ -472,11 +473,14 @@ ShotResult simulate(const Scene& scene, Vec2 cue_ball, const Shot& shot,
         BallState in;
         in.velocity = {dot(b.v, x_axis), dot(b.v, n), 0.0};
         in.spin = {b.w.x * x_axis.x + b.w.y * x_axis.y, b.w.x * n.x + b.w.y * n.y, b.w.z};
-        if (!(in.velocity.y > kRoundingApproach * std::hypot(in.velocity.x, in.velocity.y))) {
+        const bool pressed_in = dot(piece_from(cloth, b).accel, n) > 0.0;
+        if (!(in.velocity.y > 0.0) ||
+            (pressed_in &&
+             in.velocity.y <= kRoundingApproach * std::hypot(in.velocity.x, in.velocity.y))) {
           // Friction on the cloth presses the ball into the cushion with no approach
-          // speed left (a run of ever smaller bounces, each e times the last, down to
-          // rounding of the speed - where the time between them is below the rounding
-          // of t): sliding along a cushion is not modelled.
+          // speed left (a run of ever smaller bounces, each e times the last: the exact
+          // method follows them down to far below the rounding of the speed, so the
+          // run is cut at kRoundingApproach): sliding along a cushion is not modelled.
           result.status = ShotStatus::impact_failed;
           result.message = "cushion " + std::to_string(which) +
                            ": the ball is pressed against it with no approach speed (sliding "

@@ -225,6 +225,17 @@ TEST(ShotSimulator, BallPressedIntoACushionNeverPassesIt) {
   EXPECT_NE(r.message.find("pressed"), std::string::npos) << r.message;
 }
 
+// The same ball rolling along the cushion it touches, its approach speed only the
+// rounding of cos(90 deg), with nothing pressing it in: it rolls on to rest.
+TEST(ShotSimulator, BallRollingAlongACushionItTouchesIsNotPressed) {
+  const Scene s = open_table();
+  const Vec2 on_line{s.length - s.contact_offset(), 0.5};
+  const ShotResult r = simulate(s, on_line, {0.5, 90.0, 1.0, 0.0});
+  EXPECT_EQ(r.status, ShotStatus::rest) << r.message;
+  EXPECT_NEAR(r.final_position.x, on_line.x, 1e-12);
+  EXPECT_GT(r.final_position.y, on_line.y + 0.1);
+}
+
 TEST(ShotSimulator, EventCapEndsWithAClearStatus) {
   const Scene s = open_table();
   SimulationOptions o;
