@@ -737,14 +737,15 @@ Integrator::Integrator(const ScaledImpact& impact, const Constants& constants,
   record_trace(nullptr, 0, 0.0);
 }
 
-Scaled Integrator::centroid() const {
-  Scaled q;
-  q.uy = (q_[kYC] - q_[kYI]) * k_.inv_1ps;
-  q.ox = q_[kYC] - q.uy;
-  q.oz = q_[kOZ];
-  q.oy = (q_[kXI] - q_[kXC] + g_.c * q_[kOZ]) * k_.inv_1ps;
-  q.ux = q_[kXC] + q.oy;
-  return q;
+// The centroid state of the series state q.
+Scaled Integrator::centroid(const double* q) const {
+  Scaled c;
+  c.uy = (q[kYC] - q[kYI]) * k_.inv_1ps;
+  c.ox = q[kYC] - c.uy;
+  c.oz = q[kOZ];
+  c.oy = (q[kXI] - q[kXC] + g_.c * q[kOZ]) * k_.inv_1ps;
+  c.ux = q[kXC] + c.oy;
+  return c;
 }
 
 double Integrator::slip_size(int contact) const {
@@ -1148,14 +1149,8 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
 void Integrator::record_trace(const Coefficients<double>* s, int n, double h) {
   if (!trace_) return;
   auto sample = [&](const double* q) {
-    Scaled state;
-    state.uy = (q[kYC] - q[kYI]) * k_.inv_1ps;
-    state.ox = q[kYC] - state.uy;
-    state.oz = q[kOZ];
-    state.oy = (q[kXI] - q[kXC] + g_.c * q[kOZ]) * k_.inv_1ps;
-    state.ux = q[kXC] + state.oy;
     const double work = compressing_ ? q[kW] : work_compression_ + q[kW];
-    trace_->push_back(scaled_sample(g_, state, q[kP], work));
+    trace_->push_back(scaled_sample(g_, centroid(q), q[kP], work));
   };
   if (s == nullptr) {
     sample(q_);
@@ -1201,7 +1196,7 @@ void Integrator::run() {
 }
 
 void Integrator::finish() {
-  out_->outgoing = centroid();
+  out_->outgoing = centroid(q_);
   out_->impulse_total = q_[kP];
   out_->work_total = compressing_ ? q_[kW] : work_compression_ + q_[kW];
   if (compressing_ && out_->status == ImpactStatus::ok) {

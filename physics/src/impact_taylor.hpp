@@ -65,7 +65,7 @@ class Integrator {
   };
   class General;  // the kernel for every other kind of step (impact_taylor.cpp)
 
-  Scaled centroid() const;
+  Scaled centroid(const double* q) const;
   bool slipping(int contact) const { return !mode_[contact].stick; }
   double slip_size(int contact) const;
   void slip_rates(double rates[4]) const;

@@ -221,6 +221,36 @@ template <class Q>
   return acc;
 }
 
+// Order 0 of both kernels: the slips, their sizes, 1 / size and the directions.
+template <class T, class Q>
+struct Start {
+  Q u0;
+  T ri, rc;                    // |u_I|, |u_C|
+  T inv_ri, inv_rc;            // their inverses
+  T half_inv_ri, half_inv_rc;  // and halves of those
+  T exi, eyi, ecx, ecy;        // e_I, e_C
+  T uy;                        // u_y
+};
+
+template <class T, class Q>
+[[gnu::always_inline]] inline Start<T, Q> start(const Constants& k, const Coefficients<T>& s) {
+  Start<T, Q> a;
+  a.u0 = quad<Q>(s.c[kXI][0], s.c[kYI][0], s.c[kXC][0], s.c[kYC][0]);
+  const Q sq = a.u0 * a.u0;
+  a.ri = lane_sqrt((at(sq, 0) + at(sq, 1)));
+  a.rc = lane_sqrt((at(sq, 2) + at(sq, 3)));
+  a.inv_ri = 1.0 / a.ri;
+  a.inv_rc = 1.0 / a.rc;
+  a.half_inv_ri = 0.5 * a.inv_ri;
+  a.half_inv_rc = 0.5 * a.inv_rc;
+  a.exi = at(a.u0, 0) * a.inv_ri;
+  a.eyi = at(a.u0, 1) * a.inv_ri;
+  a.ecx = at(a.u0, 2) * a.inv_rc;
+  a.ecy = at(a.u0, 3) * a.inv_rc;
+  a.uy = (at(a.u0, 3) - at(a.u0, 1)) * k.inv_1ps;
+  return a;
+}
+
 // The Taylor coefficients, to order n + 1, of a step with both contacts slipping in
 // tau (dP/dtau = |u_C|). On entry s.c[.][0] hold the state, both slips nonzero; on
 // exit s.c[.][0..n+1] are filled. In tau the cloth friction times dP/dtau is
@@ -234,18 +264,16 @@ template <class T, class Q>
   T ri[kTerms], rc[kTerms], exi[kTerms], eyi[kTerms], uy[kTerms];
   const T zero{};
   const Geometry& g = k.g;
-  u[0] = quad<Q>(s.c[kXI][0], s.c[kYI][0], s.c[kXC][0], s.c[kYC][0]);
-  const Q sq = u[0] * u[0];
-  ri[0] = lane_sqrt((at(sq, 0) + at(sq, 1)));
-  rc[0] = lane_sqrt((at(sq, 2) + at(sq, 3)));
-  const T inv_ri = 1.0 / ri[0];
-  const T inv_rc = 1.0 / rc[0];
-  const T half_inv_ri = 0.5 * inv_ri, half_inv_rc = 0.5 * inv_rc;
-  exi[0] = at(u[0], 0) * inv_ri;
-  eyi[0] = at(u[0], 1) * inv_ri;
-  const T ecx = at(u[0], 2) * inv_rc, ecy = at(u[0], 3) * inv_rc;
+  const Start<T, Q> a = start<T, Q>(k, s);
+  const T inv_ri = a.inv_ri, half_inv_ri = a.half_inv_ri, half_inv_rc = a.half_inv_rc;
+  const T ecx = a.ecx, ecy = a.ecy;
+  u[0] = a.u0;
+  ri[0] = a.ri;
+  rc[0] = a.rc;
+  exi[0] = a.exi;
+  eyi[0] = a.eyi;
   const T exi_r = exi[0] * inv_ri, eyi_r = eyi[0] * inv_ri;
-  uy[0] = (at(u[0], 3) - at(u[0], 1)) * k.inv_1ps;
+  uy[0] = a.uy;
   r[0] = quad<Q>(ri[0], ri[0], rc[0], rc[0]);
   ta[0] = quad<Q>(ri[0], ri[0], uy[0], zero);
   tb[0] = quad<Q>(exi[0], eyi[0], rc[0], zero);
@@ -303,16 +331,13 @@ template <class T, class Q>
   T ri[kTerms], rc[kTerms], uy[kTerms], rho[kTerms];
   const T zero{};
   const Geometry& g = k.g;
-  u[0] = quad<Q>(s.c[kXI][0], s.c[kYI][0], s.c[kXC][0], s.c[kYC][0]);
-  const Q sq = u[0] * u[0];
-  ri[0] = lane_sqrt((at(sq, 0) + at(sq, 1)));
-  rc[0] = lane_sqrt((at(sq, 2) + at(sq, 3)));
-  const T inv_ri = 1.0 / ri[0];
-  const T inv_rc = 1.0 / rc[0];
-  const T half_inv_ri = 0.5 * inv_ri, half_inv_rc = 0.5 * inv_rc;
-  const T exi0 = at(u[0], 0) * inv_ri, eyi0 = at(u[0], 1) * inv_ri;
-  const T ecx = at(u[0], 2) * inv_rc, ecy = at(u[0], 3) * inv_rc;
-  uy[0] = (at(u[0], 3) - at(u[0], 1)) * k.inv_1ps;
+  const Start<T, Q> a = start<T, Q>(k, s);
+  const T half_inv_ri = a.half_inv_ri, half_inv_rc = a.half_inv_rc;
+  const T exi0 = a.exi, eyi0 = a.eyi, ecx = a.ecx, ecy = a.ecy;
+  u[0] = a.u0;
+  ri[0] = a.ri;
+  rc[0] = a.rc;
+  uy[0] = a.uy;
   rho[0] = zero + ri[0] * rc[0];
   r[0] = quad<Q>(ri[0], ri[0], rc[0], rc[0]);
   const T w0 = g.s * ri[0] + k.cmw * at(u[0], 1);
