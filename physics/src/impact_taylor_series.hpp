@@ -221,6 +221,20 @@ template <class Q>
   return acc;
 }
 
+// Writes a kernel's coefficients of order j: the slips, o_z, W and p.
+template <class T>
+[[gnu::always_inline]] inline void store(Coefficients<T>& s, int j, const T& xi, const T& yi,
+                                         const T& xc, const T& yc, const T& oz, const T& w,
+                                         const T& p) {
+  s.c[kXI][j] = xi;
+  s.c[kYI][j] = yi;
+  s.c[kXC][j] = xc;
+  s.c[kYC][j] = yc;
+  s.c[kOZ][j] = oz;
+  s.c[kW][j] = w;
+  s.c[kP][j] = p;
+}
+
 // Order 0 of both kernels: the slips, their sizes, 1 / size and the directions.
 template <class T, class Q>
 struct Start {
@@ -310,13 +324,8 @@ template <class T, class Q>
     const T xc1 = ((k.xc_hx * hx + k.xc_xc * xc) + k.xc_gx * gx) * inv;
     const T yc1 = (((k.yc_hy * hy + k.yc_yc * yc) + k.yc_rc * rc[m]) + k.yc_gy * gy) * inv;
     u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
-    s.c[kXI][m + 1] = xi1;
-    s.c[kYI][m + 1] = yi1;
-    s.c[kXC][m + 1] = xc1;
-    s.c[kYC][m + 1] = yc1;
-    s.c[kOZ][m + 1] = (k.oz_gx * gx) * inv;
-    s.c[kW][m + 1] = (g.c * q) * inv;
-    s.c[kP][m + 1] = rc[m] * inv;
+    store(s, m + 1, xi1, yi1, xc1, yc1, T((k.oz_gx * gx) * inv), T((g.c * q) * inv),
+          T(rc[m] * inv));
   }
 }
 
@@ -373,13 +382,8 @@ template <class T, class Q>
     const T xc1 = (k.s_xc_m2 * m2 + k.s_xc_m0 * m0) * inv;
     const T yc1 = ((k.s_yc_rho * rho[m] + k.s_yc_m3 * m3) + k.s_yc_m1 * m1) * inv;
     u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
-    s.c[kXI][m + 1] = xi1;
-    s.c[kYI][m + 1] = yi1;
-    s.c[kXC][m + 1] = xc1;
-    s.c[kYC][m + 1] = yc1;
-    s.c[kOZ][m + 1] = (k.s_oz_m0 * m0) * inv;
-    s.c[kW][m + 1] = (g.c * qw) * inv;
-    s.c[kP][m + 1] = rho[m] * inv;
+    store(s, m + 1, xi1, yi1, xc1, yc1, T((k.s_oz_m0 * m0) * inv), T((g.c * qw) * inv),
+          T(rho[m] * inv));
   }
 }
 
