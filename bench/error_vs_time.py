@@ -4,8 +4,9 @@
     build/bench/bench_impact --benchmark_format=json > impact.json
     python3 bench/error_vs_time.py impact.json --svg bench/error_vs_time.svg [--cpu]
 
-Prints a Markdown table (one row per method configuration: time per impact,
-ratio to the paper scheme at N = 5000, errors against the converged reference)
+Prints a Markdown table (one row per method configuration: the mean time per impact
+- the benchmark loop's - and the median of the inputs timed one by one, their ratios
+to the paper scheme at N = 5000, errors against the converged reference)
 and writes a log-log plot of maximum error against time per impact.
 Standard library only.
 """
@@ -31,6 +32,15 @@ def load(path, clock="real_time"):
         ns = b[clock] * unit
         if name.startswith("BM_ImpactExact/tol_exp:"):
             label = "exact, tol 1e-" + name.split(":")[1]
+        elif name.startswith("BM_ImpactExtrapolation/tol_exp:"):
+            label = "extrapolation, tol 1e-" + name.split(":")[1]
+        elif name.startswith("BM_ImpactBatch/lanes:"):
+            lanes = name.split(":")[1].split("/")[0]
+            label = ("exact, batch, widest lanes" if lanes == "0" else
+                     "exact, batch, one impact at a time" if lanes == "1" else
+                     f"exact, batch, {lanes} lanes")
+            # Items are impacts: the time per impact is the iteration's over 4096.
+            ns = ns / 4096.0
         elif name.startswith("BM_ImpactPaper/N:"):
             label = "paper, N = " + name.split(":")[1]
         elif name.startswith("BM_ImpactTableStrictFallback"):
@@ -41,6 +51,8 @@ def load(path, clock="real_time"):
             label = "table, natural roll (k_T = 1)"
         elif name.startswith("BM_ImpactRollingExact"):
             label = "exact, natural roll (k_T = 1)"
+        elif name.startswith("BM_ImpactRollingExtrapolation"):
+            label = "extrapolation, natural roll (k_T = 1)"
         elif name.startswith("BM_TableQueryRolling"):
             label = "table query alone, natural roll (k_T = 1)"
         elif name.startswith("BM_TableQuery"):
@@ -55,23 +67,33 @@ def load(path, clock="real_time"):
             "max_speed": b["max_speed_err"],
             "max_angle": b["max_angle_err_deg"],
             "rhs": b["rhs_per_impact"],
+            "median_ns": b.get("median_ns"),
         })
     return data.get("context", {}), rows
 
 
+def duration(ns):
+    if ns is None:
+        return "-"
+    return f"{ns / 1000:.2f} us" if ns >= 1000 else f"{ns:.0f} ns"
+
+
 def table(rows):
     paper = next((r for r in rows if r["label"] == "paper, N = 5000"), None)
-    out = ["| method | time per impact | paper N=5000 / this | max error (state) |"
-           " median error (state) | max speed error | max angle error (deg) |"
-           " RHS calls per impact |",
-           "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    out = ["| method | mean per impact | median per impact | paper N=5000 / this: mean |"
+           " median | max error (state) | median error (state) | max speed error |"
+           " max angle error (deg) | work per impact |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         # Ratios only within one input set (the natural-roll rows have their own), and
         # not for the table query alone, which leaves the declined impacts unsolved.
         comparable = "natural roll" not in r["label"] and "query alone" not in r["label"]
         ratio = f"{paper['ns'] / r['ns']:.1f}x" if paper and comparable else "-"
-        t = f"{r['ns'] / 1000:.2f} us" if r["ns"] >= 1000 else f"{r['ns']:.0f} ns"
-        out.append(f"| {r['label']} | {t} | {ratio} | {r['max_state']:.1e} |"
+        median_ratio = "-"
+        if paper and comparable and r["median_ns"] and paper["median_ns"]:
+            median_ratio = f"{paper['median_ns'] / r['median_ns']:.1f}x"
+        out.append(f"| {r['label']} | {duration(r['ns'])} | {duration(r['median_ns'])} |"
+                   f" {ratio} | {median_ratio} | {r['max_state']:.1e} |"
                    f" {r['median_state']:.1e} | {r['max_speed']:.1e} | {r['max_angle']:.1e} |"
                    f" {r['rhs']:.0f} |")
     return "\n".join(out)
@@ -80,7 +102,8 @@ def table(rows):
 def svg(rows, path):
     # One input set per plot: the natural-roll rows and the table query alone are
     # reported in the table only.
-    rows = [r for r in rows if "natural roll" not in r["label"] and "query alone" not in r["label"]]
+    rows = [r for r in rows if "natural roll" not in r["label"] and "query alone" not in r["label"]
+            and "batch" not in r["label"]]
     w, h, left, right, top, bottom = 720, 460, 80, 30, 30, 60
     xs = [math.log10(r["ns"]) for r in rows]
     ys = [math.log10(max(r["max_state"], 1e-17)) for r in rows]
@@ -97,7 +120,8 @@ def svg(rows, path):
     def py(y):
         return h - bottom - (y - y0) / (y1 - y0) * (h - top - bottom)
 
-    colours = {"exact": "#1f77b4", "paper": "#d62728", "table": "#2ca02c"}
+    colours = {"exact": "#1f77b4", "extrapolation": "#9467bd", "paper": "#d62728",
+               "table": "#2ca02c"}
     parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" '
              'font-family="sans-serif" font-size="12">',
              f'<rect width="{w}" height="{h}" fill="white"/>']
@@ -118,9 +142,18 @@ def svg(rows, path):
         if len(pts) > 1:
             d = " ".join(f"{x:.1f},{y:.1f}" for x, y, _ in sorted(pts, key=lambda p: p[0]))
             parts.append(f'<polyline points="{d}" fill="none" stroke="{colour}" stroke-width="1.5"/>')
-        for x, y, r in pts:
+        for k, (x, y, r) in enumerate(pts):
             parts.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="4" fill="{colour}"/>')
-            parts.append(f'<text x="{x + 7:.1f}" y="{y - 6:.1f}" fill="{colour}">{r["label"]}</text>')
+            # Labels clear of the neighbouring curves: exact's to the left of its points,
+            # the table's (two points close together) stacked below them.
+            if method == "exact":
+                tx, ty, anchor = x - 7, y + 4, "end"
+            elif method == "table":
+                tx, ty, anchor = x + 7, y + 16 + 14 * k, "start"
+            else:
+                tx, ty, anchor = x + 7, y - 6, "start"
+            parts.append(f'<text x="{tx:.1f}" y="{ty:.1f}" fill="{colour}" '
+                         f'text-anchor="{anchor}">{r["label"]}</text>')
     parts.append("</svg>")
     with open(path, "w") as f:
         f.write("\n".join(parts) + "\n")

@@ -18,7 +18,9 @@ cmake --build "$build" -j "$(nproc)" --target stress_impacts stress_shots
 status=0
 "$build/tests/stress/stress_impacts" --impacts 1000000 --paper-sample 1000 --paper-steps 100000 \
   --seed "$seed" --json "$build/stress_impacts.json" || status=1
+"$build/tests/stress/stress_impacts" --method extrapolation --impacts 1000000 --paper-sample 1000 \
+  --paper-steps 100000 --seed "$seed" --json "$build/stress_impacts_extrapolation.json" || status=1
 "$build/tests/stress/stress_shots" --shots 50000 --seed "$seed" \
   --json "$build/stress_shots.json" || status=1
-echo "figures also in $build/stress_impacts.json and $build/stress_shots.json"
+echo "figures also in $build/stress_impacts.json, $build/stress_impacts_extrapolation.json and $build/stress_shots.json"
 exit "$status"

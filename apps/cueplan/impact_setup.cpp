@@ -26,17 +26,18 @@ void add_impact_flags(CLI::App& command, ImpactArgs* args, const char* group) {
       .add_option("--method", args->method,
                   "Cushion impacts: table (precomputed surrogate, the fast path for the "
                   "thousands of shots a search needs; built once, about 30 s on 2 cores, then "
-                  "loaded from the cache), exact (adaptive integrator with stick/slip events) or "
-                  "paper (the paper's fixed-step scheme)")
-      ->type_name("table|exact|paper")
+                  "loaded from the cache), exact (Taylor-series integrator with stick/slip "
+                  "events), extrapolation (a second exact method, Gragg-Bulirsch-Stoer "
+                  "extrapolation) or paper (the paper's fixed-step scheme)")
+      ->type_name("table|exact|extrapolation|paper")
       ->capture_default_str()
       ->group(group);
   command
       .add_option("--accuracy", args->accuracy,
                   "Relative error wanted from each cushion impact, in [1e-12, 0.1]. table: the "
                   "table answers only where its measured error is within it (else exact does); "
-                  "without this flag it is the table's measured error. exact: its tolerance "
-                  "follows it. Default 1e-09 (exact)")
+                  "without this flag it is the table's measured error. exact, extrapolation: "
+                  "their tolerance follows it. Default 1e-09 (exact)")
       ->type_name("REL")
       ->group(group);
   command
@@ -49,7 +50,8 @@ void add_impact_flags(CLI::App& command, ImpactArgs* args, const char* group) {
 
 std::string read_impact_options(const ImpactArgs& args, phys::SimulationOptions* options) {
   if (!phys::parse_method(args.method, &options->impact_method))
-    return "--method must be one of table, exact, paper, got '" + args.method + "'";
+    return "--method must be one of table, exact, extrapolation, paper, got '" + args.method +
+           "'";
   if (!std::isfinite(args.accuracy) || !(args.accuracy >= 1e-12) || !(args.accuracy <= 0.1))
     return "--accuracy must lie in [1e-12, 0.1], got " + number(args.accuracy);
   options->impact_accuracy = args.accuracy;

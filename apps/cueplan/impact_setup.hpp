@@ -24,7 +24,7 @@ inline const std::string kSearchImpactMethod = physics::to_string(physics::Impac
 
 // The flags of the commands that search.
 struct ImpactArgs {
-  std::string method = kSearchImpactMethod;  // exact, paper or table
+  std::string method = kSearchImpactMethod;  // table, exact, extrapolation or paper
   double accuracy = physics::SimulationOptions{}.impact_accuracy;  // relative, per impact
   std::string table_cache;  // empty: default_table_cache_dir() (table_cache.hpp)
 };

@@ -1,7 +1,9 @@
 #include "rebound_batch.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <ostream>
+#include <span>
 
 #include "cueplan/physics/parallel.hpp"
 #include "csv.hpp"
@@ -17,32 +19,38 @@ BatchOutcome failed(std::string status, std::string message) {
   return {std::move(status), std::move(message), std::vector<std::string>(kResultColumns)};
 }
 
-BatchOutcome solve_row(const BatchRow& row, const physics::CushionParams& params,
-                       const physics::ImpactOptions& options) {
+// A row's incoming state, or why it has none.
+struct ParsedRow {
+  std::optional<physics::BallState> incoming;
+  BatchOutcome failure;
+};
+
+ParsedRow parse_row(const BatchRow& row, const physics::CushionParams& params) {
   const std::string where = "line " + std::to_string(row.line) + ": ";
   if (row.fields.size() != kInputColumns)
-    return failed("parse_error",
-                  where + "expected 4 columns, got " + std::to_string(row.fields.size()));
+    return {std::nullopt, failed("parse_error", where + "expected 4 columns, got " +
+                                                    std::to_string(row.fields.size()))};
   double value[kInputColumns];
   for (size_t c = 0; c < kInputColumns; ++c) {
     const std::optional<double> number = parse_number(row.fields[c]);
     if (!number) {
       const char* names[] = {kColumnNames.speed, kColumnNames.angle, kColumnNames.topspin,
                              kColumnNames.sidespin};
-      return failed("parse_error",
-                    where + names[c] + " is not a number: '" + trimmed(row.fields[c]) + "'");
+      return {std::nullopt, failed("parse_error", where + names[c] + " is not a number: '" +
+                                                      trimmed(row.fields[c]) + "'")};
     }
     value[c] = *number;
   }
   const auto [speed, angle_deg, topspin_k, sidespin_k] = value;
   if (std::string why = check_incidence(speed, angle_deg, topspin_k, sidespin_k, kColumnNames);
       !why.empty())
-    return failed("invalid_input", where + why);
+    return {std::nullopt, failed("invalid_input", where + why)};
+  return {physics::incoming_state_k(speed, angle_deg, topspin_k, sidespin_k, params.radius), {}};
+}
 
-  const physics::BallState incoming =
-      physics::incoming_state_k(speed, angle_deg, topspin_k, sidespin_k, params.radius);
-  const physics::ImpactResult r = physics::resolve_impact(params, incoming, options);
-  if (!physics::usable(r.status)) return failed(physics::to_string(r.status), where + r.message);
+BatchOutcome outcome_of(const BatchRow& row, const physics::ImpactResult& r) {
+  if (!physics::usable(r.status))
+    return failed(physics::to_string(r.status), "line " + std::to_string(row.line) + ": " + r.message);
   const physics::Vec3& v = r.outgoing.velocity;
   const physics::Vec3& w = r.outgoing.spin;
   BatchOutcome outcome{physics::to_string(r.status), r.message, {}};
@@ -51,13 +59,38 @@ BatchOutcome solve_row(const BatchRow& row, const physics::CushionParams& params
   return outcome;
 }
 
+// Impacts per piece of work: enough for the SIMD lanes of resolve_impacts to stay
+// full, small enough to spread over the threads.
+constexpr size_t kChunk = 256;
+
 }  // namespace
 
 void write_batch(const BatchInput& input, const physics::CushionParams& params,
                  const physics::ImpactOptions& options, int threads, std::ostream& out) {
+  // Rows parsed in order; the valid ones resolved together, in chunks over the threads
+  // (resolve_impacts gives each impact what resolve_impact would: the output does not
+  // depend on the thread count).
   std::vector<BatchOutcome> outcomes(input.rows.size());
-  physics::parallel_for(input.rows.size(), physics::thread_count(threads, input.rows.size()),
-                        [&](size_t i, unsigned) { outcomes[i] = solve_row(input.rows[i], params, options); });
+  std::vector<physics::BallState> incoming;
+  std::vector<size_t> row_of;
+  for (size_t i = 0; i < input.rows.size(); ++i) {
+    ParsedRow parsed = parse_row(input.rows[i], params);
+    if (parsed.incoming) {
+      incoming.push_back(*parsed.incoming);
+      row_of.push_back(i);
+    } else {
+      outcomes[i] = std::move(parsed.failure);
+    }
+  }
+  std::vector<physics::ImpactResult> results(incoming.size());
+  const size_t chunks = (incoming.size() + kChunk - 1) / kChunk;
+  physics::parallel_for(chunks, physics::thread_count(threads, chunks), [&](size_t c, unsigned) {
+    const size_t begin = c * kChunk, count = std::min(kChunk, incoming.size() - begin);
+    physics::resolve_impacts(params, std::span(incoming).subspan(begin, count),
+                             std::span(results).subspan(begin, count), options);
+  });
+  for (size_t j = 0; j < results.size(); ++j)
+    outcomes[row_of[j]] = outcome_of(input.rows[row_of[j]], results[j]);
 
   out << kBatchInputHeader << ",rebound_speed,rebound_angle_deg,vx,vy,wx,wy,wz,status,message\n";
   write_batch_rows(input, kInputColumns, std::move(outcomes), out);

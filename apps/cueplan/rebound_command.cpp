@@ -55,10 +55,13 @@ void write_text(std::ostream& out, const phys::CushionParams& params, const Inci
                    ", wz = " + number(w.z, "rad/s") + "  (cushion frame)");
   line("status", phys::to_string(r.status));
   const bool interpolated = r.method_used == phys::ImpactMethod::table;
-  line("method", interpolated
-                     ? std::string("table (interpolated)")
-                     : std::string(phys::to_string(r.method_used)) + " (" +
-                           std::to_string(r.rhs_evaluations) + " right-hand-side evaluations)");
+  // The work: right-hand-side calls, or for the Taylor method series orders (each
+  // about one call's work).
+  const char* work = r.method_used == phys::ImpactMethod::exact ? " series orders)"
+                                                                : " right-hand-side evaluations)";
+  line("method", interpolated ? std::string("table (interpolated)")
+                              : std::string(phys::to_string(r.method_used)) + " (" +
+                                    std::to_string(r.rhs_evaluations) + work);
   line("impulse", "compression " + number(r.impulse_compression, "N s") + ", total " +
                       number(r.impulse_total, "N s"));
   line("work",
@@ -171,10 +174,11 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
 
   const char* method = "Method";
   c.add_option("--method", args_.method,
-               "exact (adaptive integrator with stick/slip events), paper (the paper's "
-               "fixed-step scheme) or table (precomputed surrogate; falls back to exact "
-               "outside its domain)")
-      ->type_name("exact|paper|table")
+               "exact (Taylor-series integrator with stick/slip events), extrapolation (a "
+               "second exact method: Gragg-Bulirsch-Stoer extrapolation with the same events), "
+               "paper (the paper's fixed-step scheme) or table (precomputed surrogate; falls "
+               "back to exact outside its domain)")
+      ->type_name("exact|extrapolation|paper|table")
       ->capture_default_str()
       ->group(method);
   c.add_option("--steps", args_.steps, "paper: number of impulse steps N, >= 1")
@@ -182,9 +186,9 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
       ->capture_default_str()
       ->group(method);
   c.add_option("--tolerance", args_.tolerance,
-               "exact: local error per step relative to V0, in [1e-15, 1e-2]; with --method "
-               "table, for the impacts the table does not answer (default: matched to the "
-               "table's accuracy, 1e-9)")
+               "exact, extrapolation: local error per step relative to V0, in [1e-15, 1e-2]; "
+               "with --method table, for the impacts the table does not answer (default: "
+               "matched to the table's accuracy, 1e-9)")
       ->type_name("TOL")
       ->capture_default_str()
       ->group(method);
@@ -265,7 +269,8 @@ bool ReboundCommand::given(const char* flag) const { return command_->count(flag
 
 std::string ReboundCommand::read_options(phys::ImpactOptions* options) const {
   if (!phys::parse_method(args_.method, &options->method))
-    return "--method must be one of exact, paper, table, got '" + args_.method + "'";
+    return "--method must be one of exact, extrapolation, paper, table, got '" + args_.method +
+           "'";
   options->paper_steps = args_.steps;
   options->tolerance = args_.tolerance;
   // With the table, a tolerance given is the one of the impacts it does not answer;

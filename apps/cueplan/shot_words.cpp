@@ -50,6 +50,8 @@ std::string method_text(const phys::SimulationOptions& options, const phys::Scen
           "exact method in the {:.3g} % of cells where interpolation is inaccurate)",
           options.table->measured_error().max_state_relative, options.impact_accuracy,
           100.0 * options.table->fallback_fraction());
+    case phys::ImpactMethod::extrapolation:
+      return "extrapolation (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
     case phys::ImpactMethod::exact:
       break;
   }

@@ -359,18 +359,19 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
 
   const char* method = "Cushion impacts";
   c.add_option("--method", args_.method,
-               "exact (adaptive integrator with stick/slip events), paper (the paper's "
+               "exact (Taylor-series integrator with stick/slip events), extrapolation (a "
+               "second exact method, Gragg-Bulirsch-Stoer extrapolation), paper (the paper's "
                "fixed-step scheme, " + std::to_string(phys::ImpactOptions{}.paper_steps) +
                    " steps) or table (precomputed surrogate: the fast path for many shots; built "
                    "once, about 30 s on 2 cores, then loaded from the cache)")
-      ->type_name("exact|paper|table")
+      ->type_name("exact|extrapolation|paper|table")
       ->capture_default_str()
       ->group(method);
   c.add_option("--accuracy", args_.accuracy,
-               "Relative error wanted from each cushion impact, in [1e-12, 0.1]. exact: its "
-               "tolerance follows it; table: the table answers only if its measured error is "
-               "within it (else exact does), and without this flag it is the table's measured "
-               "error; paper: not used. Default 1e-09 (exact)")
+               "Relative error wanted from each cushion impact, in [1e-12, 0.1]. exact, "
+               "extrapolation: their tolerance follows it; table: the table answers only if its "
+               "measured error is within it (else exact does), and without this flag it is the "
+               "table's measured error; paper: not used. Default 1e-09 (exact)")
       ->type_name("REL")
       ->group(method);
   c.add_option("--table-cache", args_.table_cache,
@@ -458,7 +459,8 @@ bool SimulateCommand::given(const char* flag) const { return command_->count(fla
 
 std::string SimulateCommand::read_options(phys::SimulationOptions* options) const {
   if (!phys::parse_method(args_.method, &options->impact_method))
-    return "--method must be one of exact, paper, table, got '" + args_.method + "'";
+    return "--method must be one of exact, extrapolation, paper, table, got '" + args_.method +
+           "'";
   if (!std::isfinite(args_.accuracy) || !(args_.accuracy >= 1e-12) || !(args_.accuracy <= 0.1))
     return "--accuracy must lie in [1e-12, 0.1], got " + number(args_.accuracy);
   options->impact_accuracy = args_.accuracy;

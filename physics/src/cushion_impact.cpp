@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "cueplan/physics/impact_table.hpp"
 #include "impact_methods.hpp"
@@ -105,6 +106,7 @@ double kinetic_energy(const CushionParams& params, const BallState& state) {
 const char* to_string(ImpactMethod method) {
   switch (method) {
     case ImpactMethod::exact: return "exact";
+    case ImpactMethod::extrapolation: return "extrapolation";
     case ImpactMethod::paper: return "paper";
     case ImpactMethod::table: return "table";
   }
@@ -126,7 +128,8 @@ const char* to_string(Contact contact) {
 }
 
 bool parse_method(const std::string& name, ImpactMethod* method) {
-  for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::paper, ImpactMethod::table}) {
+  for (ImpactMethod m : {ImpactMethod::exact, ImpactMethod::extrapolation, ImpactMethod::paper,
+                         ImpactMethod::table}) {
     if (name == to_string(m)) {
       *method = m;
       return true;
@@ -212,9 +215,10 @@ ImpactResult invalid_result(ValidationError error) {
 }  // namespace
 
 Validation ImpactOptions::validate() const {
-  if (method != ImpactMethod::exact && method != ImpactMethod::paper &&
-      method != ImpactMethod::table)
-    return invalid({"method"}, "must be exact, paper or table", static_cast<int>(method));
+  if (method != ImpactMethod::exact && method != ImpactMethod::extrapolation &&
+      method != ImpactMethod::paper && method != ImpactMethod::table)
+    return invalid({"method"}, "must be exact, extrapolation, paper or table",
+                   static_cast<int>(method));
   if (paper_steps < 1) return invalid({"paper_steps"}, "must be at least 1", paper_steps);
   if (!tolerance_in_range(tolerance))
     return invalid({"tolerance"}, "must lie in [1e-15, 1e-2]", tolerance);
@@ -223,55 +227,174 @@ Validation ImpactOptions::validate() const {
     return invalid({"table_fallback_tolerance"},
                    "must be 0 (matched to the table) or lie in [1e-15, 1e-2]",
                    table_fallback_tolerance);
+  if (batch_lanes != 0 && batch_lanes != 1 && batch_lanes != 2 && batch_lanes != 4 &&
+      batch_lanes != 8)
+    return invalid({"batch_lanes"}, "must be 0 (widest), 1, 2, 4 or 8", batch_lanes);
   return {};
 }
 
-ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
-                            const ImpactOptions& options) {
-  if (Validation e = params.validate()) return invalid_result(std::move(*e));
-  if (Validation e = validate_state(incoming)) return invalid_result(std::move(*e));
-  if (Validation e = options.validate()) return invalid_result(std::move(*e));
-  if (options.method == ImpactMethod::table && options.table == nullptr)
-    return invalid_result(invalid({"table"}, "must be a built impact table for method table"));
+namespace {
 
-  // The exact method's tolerance: its own, or for the impacts the table does not
-  // answer, the one asked for the table's fallbacks.
-  double tolerance = options.tolerance;
+// What every impact of a call shares: the parameters and the options, checked once.
+Validation check_inputs(const CushionParams& params, const ImpactOptions& options) {
+  if (Validation e = params.validate()) return e;
+  if (Validation e = options.validate()) return e;
+  if (options.method == ImpactMethod::table && options.table == nullptr)
+    return invalid({"table"}, "must be a built impact table for method table");
+  return {};
+}
+
+// An impact made ready to solve.
+struct Prepared {
+  ImpactMethod method = ImpactMethod::exact;  // the method that solves it
+  double tolerance = 0.0;
+  detail::ScaledImpact impact;
+};
+
+// The exact method's tolerance: the options' own, or for the impacts the table does
+// not answer, the one asked for the table's fallbacks (0: matched to the table).
+double exact_tolerance(const ImpactOptions& options) {
+  if (options.method != ImpactMethod::table || options.table == nullptr) return options.tolerance;
+  return options.table_fallback_tolerance != 0.0 ? options.table_fallback_tolerance
+                                                 : options.table->fallback_tolerance();
+}
+
+double speed_scale(const BallState& incoming) {
+  return std::hypot(incoming.velocity.x, incoming.velocity.y);
+}
+
+// Stage 1 of resolve_impact: the incoming state's checks, the table's answer where it
+// has one, the method and tolerance to use, and the impact in scaled units. `params`
+// and `options` have been validated (check_inputs).
+// Returns the answer when there is one already (invalid input, or the table's);
+// otherwise fills *prep.
+std::optional<ImpactResult> prepare(const CushionParams& params, const BallState& incoming,
+                                    const ImpactOptions& options, Prepared* prep) {
+  if (Validation e = validate_state(incoming)) return invalid_result(std::move(*e));
   if (options.method == ImpactMethod::table) {
     ImpactResult r;
     if (options.table->resolve(params, incoming, &r)) return r;
     // Outside the table's domain or parameters, or a fallback cell: the exact method,
     // as accurate as the table.
-    const double fallback = options.table_fallback_tolerance;
-    tolerance = fallback != 0.0 ? fallback : options.table->fallback_tolerance();
   }
+  const double tolerance = exact_tolerance(options);
 
-  detail::ScaledImpact impact;
+  prep->method = options.method == ImpactMethod::table ? ImpactMethod::exact : options.method;
+  prep->tolerance = tolerance;
+  detail::ScaledImpact& impact = prep->impact;
   impact.geometry = detail::Geometry::from(params);
   impact.restitution = params.restitution;
-  impact.speed_scale = std::hypot(incoming.velocity.x, incoming.velocity.y);
+  impact.speed_scale = speed_scale(incoming);
   const double v = impact.speed_scale;
   const double o = params.radius / v;
   impact.incoming = {incoming.velocity.x / v, incoming.velocity.y / v, incoming.spin.x * o,
                      incoming.spin.y * o, incoming.spin.z * o};
+  return std::nullopt;
+}
 
-  const size_t trace_from = options.trace ? options.trace->size() : 0;
-  detail::ScaledOutcome out;
-  ImpactMethod used = options.method == ImpactMethod::paper ? ImpactMethod::paper
-                                                            : ImpactMethod::exact;
-  if (used == ImpactMethod::paper)
-    out = detail::solve_paper(impact, options.paper_steps, options.trace);
-  else
-    out = detail::solve_exact(impact, tolerance, options.max_steps, options.trace);
+// Stage 2: the method, in scaled units.
+detail::ScaledOutcome solve(const Prepared& prep, const ImpactOptions& options) {
+  switch (prep.method) {
+    case ImpactMethod::paper:
+      return detail::solve_paper(prep.impact, options.paper_steps, options.trace);
+    case ImpactMethod::extrapolation:
+      return detail::solve_exact(prep.impact, prep.tolerance, options.max_steps, options.trace);
+    default:
+      return detail::solve_taylor(prep.impact, prep.tolerance, options.max_steps, options.trace);
+  }
+}
 
-  ImpactResult r = to_result(params, out, v, options.trace, trace_from);
-  r.method_used = used;
+// Stage 3: physical units, the method used and the rigid-limit flag.
+ImpactResult complete(const CushionParams& params, const BallState& incoming,
+                      const Prepared& prep, const detail::ScaledOutcome& out,
+                      std::vector<TraceSample>* trace, size_t trace_from) {
+  ImpactResult r = to_result(params, out, prep.impact.speed_scale, trace, trace_from);
+  r.method_used = prep.method;
   if (r.status == ImpactStatus::ok && incoming.velocity.y > params.rigid_speed_limit) {
     r.status = ImpactStatus::rigid_limit_exceeded;
     r.message = fmt::format("velocity.y is above the rigid-cushion limit (m/s), got {:.10g}",
                             incoming.velocity.y);
   }
   return r;
+}
+
+}  // namespace
+
+// The stages of an impact, in order: prepare (checks, the table, scaling), solve (the
+// method), complete (units and flags).
+ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
+                            const ImpactOptions& options) {
+  if (Validation e = check_inputs(params, options)) return invalid_result(std::move(*e));
+  Prepared prep;
+  if (std::optional<ImpactResult> answer = prepare(params, incoming, options, &prep))
+    return std::move(*answer);
+  const size_t trace_from = options.trace ? options.trace->size() : 0;
+  const detail::ScaledOutcome out = solve(prep, options);
+  return complete(params, incoming, prep, out, options.trace, trace_from);
+}
+
+namespace {
+
+// The impacts of a batch for the exact method's lanes, prepared one at a time as a
+// lane asks for one; every other impact (answered, invalid, another method) is
+// resolved on the way, in the order of the batch.
+class BatchSource final : public detail::BatchImpacts {
+ public:
+  BatchSource(const CushionParams& params, std::span<const BallState> in,
+              std::span<ImpactResult> out, const ImpactOptions& options)
+      : params_(params), in_(in), out_(out), options_(options) {}
+
+  bool next(detail::ScaledImpact* impact, size_t* id) override {
+    while (next_ < in_.size()) {
+      const size_t i = next_++;
+      Prepared prep;
+      if (std::optional<ImpactResult> answer = prepare(params_, in_[i], options_, &prep))
+        out_[i] = std::move(*answer);
+      else if (prep.method != ImpactMethod::exact)
+        out_[i] = complete(params_, in_[i], prep, solve(prep, options_), nullptr, 0);
+      else {
+        *impact = prep.impact;
+        *id = i;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void done(size_t id, const detail::ScaledOutcome& outcome) override {
+    Prepared prep;  // what complete reads of it: the method (exact) and the speed scale
+    prep.impact.speed_scale = speed_scale(in_[id]);
+    out_[id] = complete(params_, in_[id], prep, outcome, nullptr, 0);
+  }
+
+ private:
+  const CushionParams& params_;
+  std::span<const BallState> in_;
+  std::span<ImpactResult> out_;
+  const ImpactOptions& options_;
+  size_t next_ = 0;
+};
+
+}  // namespace
+
+// The same stages for many impacts; the exact method's share solved in SIMD lanes.
+void resolve_impacts(const CushionParams& params, std::span<const BallState> in,
+                     std::span<ImpactResult> out, const ImpactOptions& options) {
+  auto refuse_all = [&](const ValidationError& error) {
+    for (ImpactResult& r : out) r = invalid_result(error);
+  };
+  if (out.size() != in.size())
+    return refuse_all(invalid({"out"}, "must have as many elements as the impacts (in)",
+                              static_cast<double>(out.size())));
+  if (options.trace != nullptr)
+    return refuse_all(invalid({"trace"}, "must be null: a batch records no slip histories"));
+  if (Validation e = check_inputs(params, options)) return refuse_all(*e);
+
+  // One tolerance for every impact the exact method solves: the options' own, or the
+  // table's fallback one.
+  BatchSource source(params, in, out, options);
+  detail::solve_taylor_batch(detail::Geometry::from(params), exact_tolerance(options),
+                             options.max_steps, options.batch_lanes, source);
 }
 
 }  // namespace cueplan::physics

@@ -1,4 +1,4 @@
-// The three ways of resolving an impact, behind resolve_impact (private header).
+// The ways of resolving an impact, behind resolve_impact (private header).
 #pragma once
 
 #include "cueplan/physics/cushion_impact.hpp"
@@ -38,8 +38,31 @@ struct ScaledOutcome {
 // Trace samples are recorded in scaled units and converted by the caller.
 ScaledOutcome solve_paper(const ScaledImpact& impact, int steps,
                           std::vector<TraceSample>* trace);
+// The extrapolation method (impact_exact.cpp).
 ScaledOutcome solve_exact(const ScaledImpact& impact, double tolerance, int max_steps,
                           std::vector<TraceSample>* trace);
+// The Taylor method, `exact` (impact_taylor.cpp).
+ScaledOutcome solve_taylor(const ScaledImpact& impact, double tolerance, int max_steps,
+                           std::vector<TraceSample>* trace);
+// Where solve_taylor_batch takes its impacts from, one at a time as lanes free up, and
+// where it gives their outcomes back (in the order they end), so that no batch-sized
+// buffers are needed.
+class BatchImpacts {
+ public:
+  // The next impact (of the batch's geometry) into *impact, false when none is left;
+  // *id names it for done().
+  virtual bool next(ScaledImpact* impact, size_t* id) = 0;
+  virtual void done(size_t id, const ScaledOutcome& outcome) = 0;
+
+ protected:
+  ~BatchImpacts() = default;
+};
+
+// The Taylor method on many impacts of one geometry in SIMD lanes
+// (impact_taylor_lanes.cpp): each outcome is bit for bit solve_taylor's without a
+// trace. lanes: 0 for the widest the CPU has, else 1, 2, 4 or 8 (at most the widest).
+void solve_taylor_batch(const Geometry& geometry, double tolerance, int max_steps, int lanes,
+                        BatchImpacts& impacts);
 
 // Fills a trace sample (scaled) from a state and the work so far.
 TraceSample scaled_sample(const Geometry& g, const Scaled& q, double impulse, double work);

@@ -1,13 +1,6 @@
 // The `table` method: tricubic interpolation of the exact method's scaled outcome,
-// with every cell's error measured at build time (see impact_table.hpp).
-//
-// Build stages, each run on the build threads:
-//   1. per alpha node: the exact outcome at the nodes, and at the test points in
-//      that alpha plane (centres of the cell faces normal to alpha);
-//   2. per alpha slab of cells: the exact outcome at the other test points (cell
-//      centres, faces normal to k_T and k_S), then each cell's stencil or fallback;
-//   3, 4. the same on the natural-roll plane k_T = 1 (nodes and edge midpoints in
-//      each alpha line, then centres and the other edge midpoints per slab).
+// with every cell's error measured at build time (see impact_table.hpp). The build's
+// stages are listed at ImpactTableAccess::build.
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/physics/parallel.hpp"
 
@@ -135,34 +128,62 @@ void lagrange_weights(double u, double w[4]) {
   w[3] = a * b * c / 6.0;
 }
 
-// The exact method's stored outcome for V0 = 1; at alpha = 0 its limit (the ball
-// passes unchanged). NaN when the exact method gave no usable answer, which makes
-// every cell that needs the value fall back.
-void exact_stored(const CushionParams& params, double alpha_deg, double kt, double ks,
-                  double out[kStored]) {
-  if (alpha_deg == 0.0) {
-    out[kUx] = 1.0;
-    out[kUy] = 0.0;
-    out[kOx] = 0.0;
-    out[kOz] = ks;
-    out[kPc] = out[kPt] = out[kWc] = 0.0;
-    return;
+// A point of the table's domain: incidence (deg) and the two spins.
+struct Point {
+  double alpha_deg, kt, ks;
+};
+
+// The exact method's stored outcome for V0 = 1 at each point, kStored numbers per
+// point into out; at alpha = 0 its limit (the ball passes unchanged). NaN where the
+// exact method gave no usable answer, which makes every cell that needs the value
+// fall back. The impacts are resolved together (resolve_impacts: SIMD lanes), each
+// exactly as resolve_impact would, in buffers a build thread reuses.
+struct ExactBuffers {
+  std::vector<BallState> incoming;
+  std::vector<size_t> index;
+  std::vector<ImpactResult> results;
+};
+
+void exact_stored(const CushionParams& params, const std::vector<Point>& points, double* out,
+                  ExactBuffers& buffers) {
+  std::vector<BallState>& incoming = buffers.incoming;
+  std::vector<size_t>& index = buffers.index;
+  incoming.clear();
+  index.clear();
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Point& pt = points[i];
+    double* o = out + i * kStored;
+    if (pt.alpha_deg == 0.0) {
+      o[kUx] = 1.0;
+      o[kUy] = 0.0;
+      o[kOx] = 0.0;
+      o[kOz] = pt.ks;
+      o[kPc] = o[kPt] = o[kWc] = 0.0;
+      continue;
+    }
+    incoming.push_back(incoming_state_k(1.0, pt.alpha_deg, pt.kt, pt.ks, params.radius));
+    index.push_back(i);
   }
   ImpactOptions options;
   options.tolerance = kNodeTolerance;
-  const ImpactResult r =
-      resolve_impact(params, incoming_state_k(1.0, alpha_deg, kt, ks, params.radius), options);
-  if (!usable(r.status)) {
-    std::fill(out, out + kStored, kNaN);
-    return;
+  std::vector<ImpactResult>& results = buffers.results;
+  results.resize(incoming.size());
+  resolve_impacts(params, incoming, results, options);
+  for (size_t j = 0; j < results.size(); ++j) {
+    const ImpactResult& r = results[j];
+    double* o = out + index[j] * kStored;
+    if (!usable(r.status)) {
+      std::fill(o, o + kStored, kNaN);
+      continue;
+    }
+    o[kUx] = r.outgoing.velocity.x;
+    o[kUy] = r.outgoing.velocity.y;
+    o[kOx] = r.outgoing.spin.x * params.radius;
+    o[kOz] = r.outgoing.spin.z * params.radius;
+    o[kPc] = r.impulse_compression / params.mass;
+    o[kPt] = r.impulse_total / params.mass;
+    o[kWc] = r.work_compression / params.mass;
   }
-  out[kUx] = r.outgoing.velocity.x;
-  out[kUy] = r.outgoing.velocity.y;
-  out[kOx] = r.outgoing.spin.x * params.radius;
-  out[kOz] = r.outgoing.spin.z * params.radius;
-  out[kPc] = r.impulse_compression / params.mass;
-  out[kPt] = r.impulse_total / params.mass;
-  out[kWc] = r.work_compression / params.mass;
 }
 
 double rebound_angle(const Outcome& q) { return std::atan2(-q.uy, q.ux); }
@@ -289,6 +310,13 @@ class ImpactTableAccess {
  public:
   static void lay_out(ImpactTable* t);
   static ImpactTable build(const CushionParams& params, const ImpactTableOptions& options);
+  // The build's stages (build() runs them in order).
+  struct Build;
+  static void volume_nodes(Build& b);
+  static void volume_stencils(Build& b);
+  static void roll_nodes(Build& b);
+  static void roll_stencils(Build& b);
+  static void measured_error(Build& b);
   static bool save(const ImpactTable& t, const std::string& path);
   static std::optional<ImpactTable> load(const std::string& path);
   static bool same_shape(const ImpactTableOptions& a, const ImpactTableOptions& b) {
@@ -514,6 +542,47 @@ struct Tally {
 
 }  // namespace
 
+// What the stages of a build share.
+struct ImpactTableAccess::Build {
+  Build(ImpactTable& table, const CushionParams& params) : t(table), exact_params(params) {}
+  ImpactTable& t;
+  CushionParams exact_params;  // the ball of the table's params, never flagged
+  double tolerance = 0.0;      // cell_tolerance
+  double coupling = 0.0, work_ratio = 0.0;
+  int threads = 1;
+  std::vector<Tally> tallies;  // one per build thread
+  std::vector<ExactBuffers> buffers;  // one per build thread
+  // Exact outcomes at test points kept from one stage for the next: on the centres of
+  // the cell faces normal to alpha (per alpha node), and on the natural-roll plane at
+  // the midpoints of the cell edges along k_S (per alpha node).
+  std::vector<double> alpha_faces;
+  std::vector<double> alpha_edges;
+
+  // The exact outcomes at points, on build thread `thread`.
+  void exact(const std::vector<Point>& points, double* out, int thread) {
+    exact_stored(exact_params, points, out, buffers[thread]);
+  }
+  static double mid(const ImpactTable::Axis& axis, int i) {
+    return 0.5 * (axis.node(i) + axis.node(i + 1));
+  }
+  static double at(const ImpactTable::Axis& axis, int i, double local) {
+    return axis.node(i) + local * (axis.node(i + 1) - axis.node(i));
+  }
+};
+
+// The build, stage by stage:
+//   1. volume_nodes: per alpha node, the exact outcome at the nodes of its k_T x k_S
+//      plane and at the test points in that plane (centres of the cell faces normal to
+//      alpha);
+//   2. volume_stencils: per alpha slab of cells, the exact outcome at the other test
+//      points (cell centres, faces normal to k_T and k_S), then each cell's stencil or
+//      fallback;
+//   3, 4. roll_nodes, roll_stencils: the same on the natural-roll plane k_T = 1 (nodes
+//      and edge midpoints in each alpha line, then centres and the other edge midpoints
+//      per slab);
+//   5. measured_error: the build threads' tallies summed.
+// Each stage runs on the build threads; the exact outcomes of a work item are resolved
+// as one batch.
 ImpactTable ImpactTableAccess::build(const CushionParams& params,
                                      const ImpactTableOptions& options) {
   ImpactTable t;
@@ -521,71 +590,75 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
   t.params_ = params;
   if (options.validate() || params.validate()) return t;
   lay_out(&t);
+  Build b{t, params};
+  b.exact_params.rigid_speed_limit = DBL_MAX;
+  b.tolerance = options.cell_tolerance;
+  b.coupling = t.spin_coupling_;
+  b.work_ratio = t.work_ratio_;
+  b.threads = std::max(options.threads > 0 ? options.threads
+                                           : static_cast<int>(std::thread::hardware_concurrency()),
+                       1);
+  b.tallies.resize(b.threads);
+  b.buffers.resize(b.threads);
 
-  // The exact method on the ball of these params at V0 = 1, never flagged.
-  CushionParams exact_params = params;
-  exact_params.rigid_speed_limit = DBL_MAX;
-  auto exact = [&](double alpha, double kt, double ks, double* out) {
-    exact_stored(exact_params, alpha, kt, ks, out);
-  };
-  const double tolerance = options.cell_tolerance;
-  const double coupling = t.spin_coupling_, work_ratio = t.work_ratio_;
+  volume_nodes(b);
+  volume_stencils(b);
+  if (t.has_roll_plane_) {
+    roll_nodes(b);
+    roll_stencils(b);
+  }
+  measured_error(b);
+  return t;
+}
 
+void ImpactTableAccess::volume_nodes(Build& b) {
+  ImpactTable& t = b.t;
   const ImpactTable::Axis* axes = t.axes_;
   const int na = axes[0].nodes, nt = axes[1].nodes, ns = axes[2].nodes;
   const size_t plane_nodes = static_cast<size_t>(nt) * ns;
   const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
   assign_nodes(&t.nodes_, na * plane_nodes * kStored, kNaN);
-  t.cell_stencil_.assign((na - 1) * plane_cells, kFallback);
-
-  int threads =
-      options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::max(threads, 1);
-  std::vector<Tally> tallies(threads);
-
-  auto mid = [](const ImpactTable::Axis& axis, int i) {
-    return 0.5 * (axis.node(i) + axis.node(i + 1));
-  };
-  auto at = [](const ImpactTable::Axis& axis, int i, double local) {
-    return axis.node(i) + local * (axis.node(i + 1) - axis.node(i));
-  };
-
-  // Stage 1.
-  std::vector<double> alpha_faces(na * plane_cells * kStored);
-  parallel_for(threads, na, [&](int ia, int id) {
+  b.alpha_faces.assign(na * plane_cells * kStored, 0.0);
+  parallel_for(b.threads, na, [&](int ia, int id) {
     const double alpha = axes[0].node(ia);
+    std::vector<Point> nodes, faces;
     for (int it = 0; it < nt; ++it)
-      for (int is = 0; is < ns; ++is)
-        exact(alpha, axes[1].node(it), axes[2].node(is),
-              &t.nodes_[(ia * plane_nodes + it * ns + is) * kStored]);
+      for (int is = 0; is < ns; ++is) nodes.push_back({alpha, axes[1].node(it), axes[2].node(is)});
     for (int it = 0; it < nt - 1; ++it)
       for (int is = 0; is < ns - 1; ++is)
-        exact(alpha, mid(axes[1], it), mid(axes[2], is),
-              &alpha_faces[(ia * plane_cells + it * (ns - 1) + is) * kStored]);
-    tallies[id].test_points += static_cast<int64_t>(plane_cells);
+        faces.push_back({alpha, Build::mid(axes[1], it), Build::mid(axes[2], is)});
+    b.exact(nodes, &t.nodes_[ia * plane_nodes * kStored], id);
+    b.exact(faces, &b.alpha_faces[ia * plane_cells * kStored], id);
+    b.tallies[id].test_points += static_cast<int64_t>(plane_cells);
   });
+}
 
-  // Stage 2.
-  parallel_for(threads, na - 1, [&](int ia, int id) {
-    Tally& tally = tallies[id];
-    const double alpha = mid(axes[0], ia);
+void ImpactTableAccess::volume_stencils(Build& b) {
+  ImpactTable& t = b.t;
+  const ImpactTable::Axis* axes = t.axes_;
+  const int na = axes[0].nodes, nt = axes[1].nodes, ns = axes[2].nodes;
+  const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
+  const double tolerance = b.tolerance, coupling = b.coupling, work_ratio = b.work_ratio;
+  t.cell_stencil_.assign((na - 1) * plane_cells, kFallback);
+  parallel_for(b.threads, na - 1, [&](int ia, int id) {
+    Tally& tally = b.tallies[id];
+    const double alpha = Build::mid(axes[0], ia);
     // Exact values at the centres (it, is), k_T faces (node it, mid is) and k_S
     // faces (mid it, node is) of this slab.
-    std::vector<double> centres(plane_cells * kStored), topspin_faces(nt * (ns - 1) * kStored),
-        sidespin_faces((nt - 1) * ns * kStored);
+    std::vector<Point> centre_points, topspin_points, sidespin_points;
     for (int it = 0; it < nt; ++it) {
       for (int is = 0; is < ns; ++is) {
         if (it < nt - 1 && is < ns - 1)
-          exact(alpha, mid(axes[1], it), mid(axes[2], is),
-                &centres[(it * (ns - 1) + is) * kStored]);
-        if (is < ns - 1)
-          exact(alpha, axes[1].node(it), mid(axes[2], is),
-                &topspin_faces[(it * (ns - 1) + is) * kStored]);
-        if (it < nt - 1)
-          exact(alpha, mid(axes[1], it), axes[2].node(is),
-                &sidespin_faces[(it * ns + is) * kStored]);
+          centre_points.push_back({alpha, Build::mid(axes[1], it), Build::mid(axes[2], is)});
+        if (is < ns - 1) topspin_points.push_back({alpha, axes[1].node(it), Build::mid(axes[2], is)});
+        if (it < nt - 1) sidespin_points.push_back({alpha, Build::mid(axes[1], it), axes[2].node(is)});
       }
     }
+    std::vector<double> centres(plane_cells * kStored), topspin_faces(nt * (ns - 1) * kStored),
+        sidespin_faces((nt - 1) * ns * kStored);
+    b.exact(centre_points, centres.data(), id);
+    b.exact(topspin_points, topspin_faces.data(), id);
+    b.exact(sidespin_points, sidespin_faces.data(), id);
     tally.test_points += static_cast<int64_t>(plane_cells + nt * (ns - 1) + (nt - 1) * ns);
 
     for (int it = 0; it < nt - 1; ++it) {
@@ -594,8 +667,8 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
         const size_t in_plane = it * (ns - 1) + is;
         const double* exact_at[kTestPoints] = {
             &centres[in_plane * kStored],
-            &alpha_faces[(ia * plane_cells + in_plane) * kStored],
-            &alpha_faces[((ia + 1) * plane_cells + in_plane) * kStored],
+            &b.alpha_faces[(ia * plane_cells + in_plane) * kStored],
+            &b.alpha_faces[((ia + 1) * plane_cells + in_plane) * kStored],
             &topspin_faces[in_plane * kStored],
             &topspin_faces[((it + 1) * (ns - 1) + is) * kStored],
             &sidespin_faces[(it * ns + is) * kStored],
@@ -603,9 +676,9 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
         Outcome truth[kTestPoints];
         double cos_alpha[kTestPoints], kt[kTestPoints], ks[kTestPoints];
         for (int p = 0; p < kTestPoints; ++p) {
-          cos_alpha[p] = std::cos(at(axes[0], ia, kTestLocal[p][0]) * kDegree);
-          kt[p] = at(axes[1], it, kTestLocal[p][1]);
-          ks[p] = at(axes[2], is, kTestLocal[p][2]);
+          cos_alpha[p] = std::cos(Build::at(axes[0], ia, kTestLocal[p][0]) * kDegree);
+          kt[p] = Build::at(axes[1], it, kTestLocal[p][1]);
+          ks[p] = Build::at(axes[2], is, kTestLocal[p][2]);
           truth[p] = expand(exact_at[p], cos_alpha[p], kt[p], ks[p], coupling, work_ratio);
         }
         auto error_of = [&](int stencil, double cutoff) {
@@ -628,70 +701,85 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
       }
     }
   });
-  alpha_faces = {};
+  b.alpha_faces = {};
+}
 
-  // Stages 3 and 4: the natural-roll plane.
-  if (t.has_roll_plane_) {
-    const ImpactTable::Axis* roll = t.roll_axes_;
-    const int ra = roll[0].nodes, rs = roll[1].nodes;
-    assign_nodes(&t.roll_nodes_, static_cast<size_t>(ra) * rs * kStored, kNaN);
-    t.roll_stencil_.assign(static_cast<size_t>(ra - 1) * (rs - 1), kFallback);
-    std::vector<double> alpha_edges(static_cast<size_t>(ra) * (rs - 1) * kStored);
-    parallel_for(threads, ra, [&](int ia, int id) {
-      const double alpha = roll[0].node(ia);
-      for (int is = 0; is < rs; ++is)
-        exact(alpha, 1.0, roll[1].node(is), &t.roll_nodes_[(ia * rs + is) * kStored]);
-      for (int is = 0; is < rs - 1; ++is)
-        exact(alpha, 1.0, mid(roll[1], is), &alpha_edges[(ia * (rs - 1) + is) * kStored]);
-      tallies[id].test_points += rs - 1;
-    });
-    parallel_for(threads, ra - 1, [&](int ia, int id) {
-      Tally& tally = tallies[id];
-      const double alpha = mid(roll[0], ia);
-      std::vector<double> centres((rs - 1) * kStored), sidespin_edges(rs * kStored);
-      for (int is = 0; is < rs; ++is) {
-        if (is < rs - 1) exact(alpha, 1.0, mid(roll[1], is), &centres[is * kStored]);
-        exact(alpha, 1.0, roll[1].node(is), &sidespin_edges[is * kStored]);
+void ImpactTableAccess::roll_nodes(Build& b) {
+  ImpactTable& t = b.t;
+  const ImpactTable::Axis* roll = t.roll_axes_;
+  const int ra = roll[0].nodes, rs = roll[1].nodes;
+  assign_nodes(&t.roll_nodes_, static_cast<size_t>(ra) * rs * kStored, kNaN);
+  b.alpha_edges.assign(static_cast<size_t>(ra) * (rs - 1) * kStored, 0.0);
+  parallel_for(b.threads, ra, [&](int ia, int id) {
+    const double alpha = roll[0].node(ia);
+    std::vector<Point> nodes, edges;
+    for (int is = 0; is < rs; ++is) nodes.push_back({alpha, 1.0, roll[1].node(is)});
+    for (int is = 0; is < rs - 1; ++is) edges.push_back({alpha, 1.0, Build::mid(roll[1], is)});
+    b.exact(nodes, &t.roll_nodes_[static_cast<size_t>(ia) * rs * kStored], id);
+    b.exact(edges, &b.alpha_edges[static_cast<size_t>(ia) * (rs - 1) * kStored], id);
+    b.tallies[id].test_points += rs - 1;
+  });
+}
+
+void ImpactTableAccess::roll_stencils(Build& b) {
+  ImpactTable& t = b.t;
+  const ImpactTable::Axis* roll = t.roll_axes_;
+  const int ra = roll[0].nodes, rs = roll[1].nodes;
+  const double tolerance = b.tolerance, coupling = b.coupling, work_ratio = b.work_ratio;
+  t.roll_stencil_.assign(static_cast<size_t>(ra - 1) * (rs - 1), kFallback);
+  parallel_for(b.threads, ra - 1, [&](int ia, int id) {
+    Tally& tally = b.tallies[id];
+    const double alpha = Build::mid(roll[0], ia);
+    std::vector<Point> centre_points, edge_points;
+    for (int is = 0; is < rs; ++is) {
+      if (is < rs - 1) centre_points.push_back({alpha, 1.0, Build::mid(roll[1], is)});
+      edge_points.push_back({alpha, 1.0, roll[1].node(is)});
+    }
+    std::vector<double> centres((rs - 1) * kStored), sidespin_edges(rs * kStored);
+    b.exact(centre_points, centres.data(), id);
+    b.exact(edge_points, sidespin_edges.data(), id);
+    tally.test_points += 2 * rs - 1;
+    for (int is = 0; is < rs - 1; ++is) {
+      const int cell[2] = {ia, is};
+      const double* exact_at[kRollTestPoints] = {
+          &centres[is * kStored], &b.alpha_edges[(ia * (rs - 1) + is) * kStored],
+          &b.alpha_edges[((ia + 1) * (rs - 1) + is) * kStored], &sidespin_edges[is * kStored],
+          &sidespin_edges[(is + 1) * kStored]};
+      Outcome truth[kRollTestPoints];
+      double cos_alpha[kRollTestPoints], ks[kRollTestPoints];
+      for (int p = 0; p < kRollTestPoints; ++p) {
+        cos_alpha[p] = std::cos(Build::at(roll[0], ia, kRollTestLocal[p][0]) * kDegree);
+        ks[p] = Build::at(roll[1], is, kRollTestLocal[p][1]);
+        truth[p] = expand(exact_at[p], cos_alpha[p], 1.0, ks[p], coupling, work_ratio);
       }
-      tally.test_points += 2 * rs - 1;
-      for (int is = 0; is < rs - 1; ++is) {
-        const int cell[2] = {ia, is};
-        const double* exact_at[kRollTestPoints] = {
-            &centres[is * kStored], &alpha_edges[(ia * (rs - 1) + is) * kStored],
-            &alpha_edges[((ia + 1) * (rs - 1) + is) * kStored], &sidespin_edges[is * kStored],
-            &sidespin_edges[(is + 1) * kStored]};
-        Outcome truth[kRollTestPoints];
-        double cos_alpha[kRollTestPoints], ks[kRollTestPoints];
-        for (int p = 0; p < kRollTestPoints; ++p) {
-          cos_alpha[p] = std::cos(at(roll[0], ia, kRollTestLocal[p][0]) * kDegree);
-          ks[p] = at(roll[1], is, kRollTestLocal[p][1]);
-          truth[p] = expand(exact_at[p], cos_alpha[p], 1.0, ks[p], coupling, work_ratio);
-        }
-        auto error_of = [&](int stencil, double cutoff) {
-          PointError e;
-          double q[kStored];
-          for (int p = 0; p < kRollTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
-            t.interpolate_roll(cell, kRollTestLocal[p], stencil, q);
-            e.include(
-                point_error(expand(q, cos_alpha[p], 1.0, ks[p], coupling, work_ratio), truth[p]));
-          }
-          return e;
-        };
+      auto error_of = [&](int stencil, double cutoff) {
         PointError e;
-        const uint8_t code = choose_stencil(true, tolerance, error_of, &e);
-        t.roll_stencil_[ia * (rs - 1) + is] = code;
-        if (code == kFallback)
-          ++tally.roll_fallback;
-        else
-          tally.worst.include(e);
-      }
-    });
-  }
+        double q[kStored];
+        for (int p = 0; p < kRollTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
+          t.interpolate_roll(cell, kRollTestLocal[p], stencil, q);
+          e.include(
+              point_error(expand(q, cos_alpha[p], 1.0, ks[p], coupling, work_ratio), truth[p]));
+        }
+        return e;
+      };
+      PointError e;
+      const uint8_t code = choose_stencil(true, tolerance, error_of, &e);
+      t.roll_stencil_[ia * (rs - 1) + is] = code;
+      if (code == kFallback)
+        ++tally.roll_fallback;
+      else
+        tally.worst.include(e);
+    }
+  });
+  b.alpha_edges = {};
+}
 
+void ImpactTableAccess::measured_error(Build& b) {
+  ImpactTable& t = b.t;
   ImpactTableError& err = t.error_;
   err.cells = static_cast<int64_t>(t.cell_stencil_.size());
   err.roll_cells = static_cast<int64_t>(t.roll_stencil_.size());
-  for (const Tally& tally : tallies) {
+  for (const Tally& tally : b.tallies) {
     err.max_speed_relative = std::max(err.max_speed_relative, tally.worst.speed);
     err.max_angle_deg = std::max(err.max_angle_deg, tally.worst.angle_deg);
     err.max_state_relative = std::max(err.max_state_relative, tally.worst.state);
@@ -700,7 +788,6 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
     err.roll_fallback_cells += tally.roll_fallback;
     err.test_points += tally.test_points;
   }
-  return t;
 }
 
 ImpactTable ImpactTable::build(const CushionParams& params, const ImpactTableOptions& options) {

@@ -4,7 +4,8 @@
 // V0 from 1e-6 to 20 m/s, alpha from 1e-6 to 180 - 1e-6 deg, |k| up to 20, starts
 // with zero slip at a contact, parameters at their limits (mu = 0, e = 1, friction at
 // the edge of validity, extreme cushion heights, other radii and masses) and inputs
-// that must be refused - resolves each with the exact method and checks that
+// that must be refused - resolves each with an exact method (`exact`, or with
+// --method extrapolation the other one) and checks that
 //   - every number in the result is finite, whatever the status, and a usable result
 //     leaves the cushion (outgoing v_y < 0);
 //   - the work (right-hand side calls) stays within the integrator's bound;
@@ -16,7 +17,7 @@
 // Prints the counts; exits 1 when a check fails, 2 for bad arguments.
 //
 //   stress_impacts [--impacts N] [--seed S] [--paper-sample M] [--paper-steps N]
-//                  [--json FILE]
+//                  [--method exact|extrapolation] [--json FILE]
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -34,11 +35,16 @@
 #include <vector>
 
 #include "cueplan/physics/cushion_impact.hpp"
+#include "support/impact_domain.hpp"
 #include "support/physics_checks.hpp"
 #include "support/stress_output.hpp"
 
 namespace cueplan::physics {
 namespace {
+
+using test::draw_params;
+using test::draw_state;
+using test::Sampler;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
@@ -47,14 +53,20 @@ struct Options {
   uint64_t seed = 1;
   long long paper_sample = 1000;  // impacts also solved with the paper's scheme
   int paper_steps = 100000;       // its N
+  ImpactMethod method = ImpactMethod::exact;  // the exact method under test
   std::string json;               // write the figures here too, when set
 };
 
-// The exact method's work bound, from its structure (physics/src/impact_exact.cpp):
-// every one of at most max_steps steps - accepted, rejected or searching for a stick
-// break - costs at most 64 right-hand side calls in its deepest extrapolation column,
-// plus one at its start and one per stick-break search.
-constexpr int kRhsPerStep = 66;
+// The exact methods' work bounds per step, from their structure.
+// Extrapolation (physics/src/impact_exact.cpp): every one of at most max_steps steps -
+// accepted, rejected or searching for a stick break - costs at most 64 right-hand side
+// calls in its deepest extrapolation column, plus one at its start and one per
+// stick-break search.
+// Taylor (physics/src/impact_taylor.cpp; its work counts series orders): a step
+// computes at most kMaxOrder + 1 = 25 orders, twice each where a slip grows from zero,
+// plus 4 for that slip's Jacobian and at most 4 sweeps x 2 slips x 20 Newton steps x
+// 2 evaluations of order 0 for its direction: 376.
+int work_per_step(ImpactMethod method) { return method == ImpactMethod::extrapolation ? 66 : 376; }
 // Energy may rise by rounding only.
 constexpr double kEnergySlack = 1e-12;
 // The paper's scheme is first order in dP_I = (1 + e) V0 sin(alpha) M / N: its error
@@ -72,136 +84,6 @@ struct Case {
   std::string state_kind;
   std::string bad_field;  // set when the input must be refused: the field to name
 };
-
-class Sampler {
- public:
-  explicit Sampler(uint64_t seed) : rng_(seed) {}
-
-  double uniform(double lo, double hi) {
-    return std::uniform_real_distribution<double>(lo, hi)(rng_);
-  }
-  bool chance(double p) { return uniform(0.0, 1.0) < p; }
-  double log_uniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
-  template <size_t N>
-  double pick(const std::array<double, N>& values) {
-    return values[std::uniform_int_distribution<size_t>(0, N - 1)(rng_)];
-  }
-  int index(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
-
-  // The domain's speeds, incidences and spins, landing on an edge one time in eight.
-  double speed() {
-    return chance(0.125) ? pick(std::array{1e-6, 20.0, 2.5, 1e-3}) : log_uniform(1e-6, 20.0);
-  }
-  double alpha() {
-    return chance(0.125) ? pick(std::array{1e-6, 180.0 - 1e-6, 90.0, 90.0 - 1e-6, 90.0 + 1e-6, 1e-3,
-                                           180.0 - 1e-3, 0.5, 179.5})
-                         : uniform(1e-6, 180.0 - 1e-6);
-  }
-  double spin_k() {
-    return chance(0.125) ? pick(std::array{-20.0, 20.0, 0.0, 1.0, -1.0, 1e-9, -1e-9})
-                         : uniform(-20.0, 20.0);
-  }
-
- private:
-  std::mt19937_64 rng_;
-};
-
-// Parameters that pass validate(): friction shrunk toward zero until they do.
-void make_valid(CushionParams* p) {
-  for (int i = 0; i < 200 && p->validate(); ++i) {
-    p->mu_table *= 0.7;
-    p->mu_cushion *= 0.7;
-  }
-  if (p->validate()) p->mu_table = p->mu_cushion = 0.0;
-}
-
-CushionParams draw_params(Sampler& s, std::string* kind) {
-  CushionParams p;
-  const int k = s.index(10);
-  switch (k) {
-    case 0:
-    case 1:
-    case 2:
-    case 3:
-      *kind = "snooker";
-      break;
-    case 4:
-      *kind = "frictionless";
-      p.mu_cushion = p.mu_table = 0.0;
-      break;
-    case 5:
-      *kind = s.chance(0.5) ? "mu_w=0" : "mu_s=0";
-      (*kind == "mu_w=0" ? p.mu_cushion : p.mu_table) = 0.0;
-      break;
-    case 6:
-      *kind = "e=1";
-      p.restitution = 1.0;
-      if (s.chance(0.5)) {
-        *kind = "e=1, frictionless";
-        p.mu_cushion = p.mu_table = 0.0;
-      }
-      break;
-    case 7:
-      *kind = "tiny e";
-      p.restitution = s.chance(0.5) ? 1e-6 : s.log_uniform(1e-6, 0.1);
-      break;
-    case 8: {
-      // Friction at the edge of validity: mu_w just below tan(theta), mu_s as large as
-      // validate() allows with it.
-      *kind = "large mu";
-      const double tan_theta = p.sin_theta() / p.cos_theta();
-      p.mu_cushion = tan_theta * (1.0 - s.log_uniform(1e-9, 0.1));
-      p.mu_table = s.log_uniform(0.2, 10.0);
-      make_valid(&p);
-      break;
-    }
-    default: {
-      // Everything random: other radii and masses, cushion heights from just above
-      // the equator to just below the top, any friction and restitution.
-      *kind = "random";
-      p.radius = s.log_uniform(1e-3, 0.1);
-      p.mass = s.log_uniform(1e-3, 10.0);
-      const double h =
-          s.chance(0.2) ? s.pick(std::array{1e-6, 1.0 - 1e-6, 1e-3, 0.999}) : s.uniform(0.05, 0.95);
-      p.cushion_height = p.radius * (1.0 + h);
-      const double tan_theta = p.sin_theta() / p.cos_theta();
-      p.mu_cushion = s.uniform(0.0, 1.0) * tan_theta;
-      p.mu_table = s.uniform(0.0, 1.0);
-      p.restitution = s.chance(0.1) ? 1.0 : s.uniform(1e-6, 1.0);
-      make_valid(&p);
-      break;
-    }
-  }
-  return p;
-}
-
-BallState draw_state(Sampler& s, const CushionParams& p, std::string* kind) {
-  const double v0 = s.speed(), alpha = s.alpha();
-  const int k = s.index(10);
-  if (k < 6) {
-    *kind = "paper form";
-    return incoming_state_k(v0, alpha, s.spin_k(), s.spin_k(), p.radius);
-  }
-  BallState b = incoming_state(v0, alpha, 0.0, 0.0);
-  const double unit = v0 / p.radius;  // spin of R w = V0
-  const double sth = p.sin_theta(), cth = p.cos_theta();
-  if (k < 9) {
-    *kind = "general spin";
-    b.spin = {s.spin_k() * unit, s.spin_k() * unit, s.spin_k() * unit};
-  } else if (s.chance(0.5)) {
-    // No slip at the cloth: x_C = v_x - w_y R = 0, y_C = v_y + w_x R = 0.
-    *kind = "zero slip at cloth";
-    b.spin = {-b.velocity.y / p.radius, b.velocity.x / p.radius, s.spin_k() * unit};
-  } else {
-    // No slip at the cushion: y_I' = -v_y sin(th) + w_x R = 0 and
-    // x_I = v_x + w_y R sin(th) - w_z R cos(th) = 0.
-    *kind = "zero slip at cushion";
-    const double wy = s.spin_k() * unit;
-    b.spin = {b.velocity.y * sth / p.radius, wy,
-              (b.velocity.x + wy * p.radius * sth) / (p.radius * cth)};
-  }
-  return b;
-}
 
 // Input that must be refused, with the field the message must name.
 void spoil(Sampler& s, Case* c) {
@@ -269,8 +151,9 @@ void spoil(Sampler& s, Case* c) {
   c->state_kind = "bad " + c->bad_field;
 }
 
-Case draw_case(Sampler& s) {
+Case draw_case(Sampler& s, ImpactMethod method) {
   Case c;
+  c.options.method = method;
   c.params = draw_params(s, &c.params_kind);
   c.state = draw_state(s, c.params, &c.state_kind);
   // One impact in ten at another tolerance of the exact method.
@@ -340,7 +223,7 @@ int run(const Options& opt) {
       opt.paper_sample > 0 ? std::max<long long>(1, opt.impacts / opt.paper_sample) : 0;
 
   for (long long i = 0; i < opt.impacts; ++i) {
-    const Case c = draw_case(s);
+    const Case c = draw_case(s, opt.method);
     const auto t0 = std::chrono::steady_clock::now();
     const ImpactResult r = resolve_impact(c.params, c.state, c.options);
     const double seconds =
@@ -383,7 +266,7 @@ int run(const Options& opt) {
       max_rhs = r.rhs_evaluations;
       costliest = reproducer(c);
     }
-    if (r.rhs_evaluations > kRhsPerStep * c.options.max_steps)
+    if (r.rhs_evaluations > work_per_step(opt.method) * c.options.max_steps)
       fail.add("work bound exceeded", reproducer(c) + " rhs " + std::to_string(r.rhs_evaluations));
     // A usable result leaves the cushion. The end of the impact is landed on to about
     // the tolerance in V0 (scaled t = -v_y / V0), so where e v_y is below that the
@@ -487,8 +370,8 @@ int run(const Options& opt) {
   }
 
   // Figures.
-  std::printf("stress_impacts: seed %" PRIu64 ", %lld impacts (exact method)\n", opt.seed,
-              opt.impacts);
+  std::printf("stress_impacts: seed %" PRIu64 ", %lld impacts (%s method)\n", opt.seed,
+              opt.impacts, to_string(opt.method));
   std::printf("  statuses:");
   for (const auto& [k, n] : statuses) std::printf(" %s %lld;", k.c_str(), n);
   std::printf("\n  step_limit at the default tolerance: %lld; by parameters / state:",
@@ -505,8 +388,9 @@ int run(const Options& opt) {
 
   std::printf("  energy checked: %lld, rises beyond %.0e: %lld, largest relative change %.3e\n",
               energy_checked, kEnergySlack, fail.count["kinetic energy rose"], max_gain);
-  std::printf("  work: most RHS calls %d (bound %d = %d x max_steps)\n", max_rhs,
-              kRhsPerStep * ImpactOptions{}.max_steps, kRhsPerStep);
+  std::printf("  work: most RHS calls (exact: series orders) %d (bound %d = %d x max_steps)\n",
+              max_rhs, work_per_step(opt.method) * ImpactOptions{}.max_steps,
+              work_per_step(opt.method));
   std::printf("    costliest: %s\n", costliest.c_str());
   std::printf("  time per impact: mean %.2f us, max %.1f us\n",
               1e6 * total_seconds / static_cast<double>(std::max<long long>(1, opt.impacts)),
@@ -575,12 +459,17 @@ int main(int argc, char** argv) {
       opt.paper_sample = n;
     } else if (arg == "--paper-steps" && ok && (ok = parse_count(value, 1, &n)) && n <= 100000000) {
       opt.paper_steps = static_cast<int>(n);
+    } else if (arg == "--method" && ok && cueplan::physics::parse_method(value, &opt.method) &&
+               (opt.method == cueplan::physics::ImpactMethod::exact ||
+                opt.method == cueplan::physics::ImpactMethod::extrapolation)) {
+      // an exact method
     } else if (arg == "--json" && ok) {
       opt.json = value;
     } else {
       std::fprintf(stderr,
                    "stress_impacts: bad argument '%s'; usage: stress_impacts [--impacts N] "
-                   "[--seed S] [--paper-sample M] [--paper-steps N] [--json FILE]\n",
+                   "[--seed S] [--paper-sample M] [--paper-steps N] "
+                   "[--method exact|extrapolation] [--json FILE]\n",
                    arg.c_str());
       return 2;
     }

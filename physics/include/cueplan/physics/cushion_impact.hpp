@@ -9,6 +9,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,9 +60,10 @@ BallState incoming_state_k(double speed, double alpha_deg, double topspin_k,
 double kinetic_energy(const CushionParams& params, const BallState& state);
 
 enum class ImpactMethod {
-  exact,  // adaptive extrapolation integrator with events (default)
-  paper,  // the paper's fixed-step scheme in P_I (section 3.4)
-  table,  // precomputed surrogate over (alpha, k_T, k_S); see impact_table.hpp
+  exact,          // Taylor-series integrator with events (default)
+  extrapolation,  // Gragg-Bulirsch-Stoer extrapolation with events: a second exact method
+  paper,          // the paper's fixed-step scheme in P_I (section 3.4)
+  table,          // precomputed surrogate over (alpha, k_T, k_S); see impact_table.hpp
 };
 
 enum class ImpactStatus {
@@ -73,7 +75,7 @@ enum class ImpactStatus {
 
 const char* to_string(ImpactMethod method);
 const char* to_string(ImpactStatus status);
-// Parses "exact", "paper" or "table"; returns false for anything else.
+// Parses "exact", "extrapolation", "paper" or "table"; returns false for anything else.
 bool parse_method(const std::string& name, ImpactMethod* method);
 
 // True when a result's outgoing state can be used (ok or only flagged).
@@ -105,15 +107,23 @@ struct TraceSample {
 struct ImpactOptions {
   ImpactMethod method = ImpactMethod::exact;
   int paper_steps = 5000;     // paper: N, with dP_I = (1 + e) M V0 sin(alpha) / N
-  double tolerance = 1e-12;   // exact: local error per step, relative to the speed scale
-  int max_steps = 10000;      // exact: work bound on accepted plus rejected steps; a
-                              // slide lingering near zero slip needs more than 2000
-                              // (cushion_impact_test.cpp, LongSlideNearZeroSlip...)
+  double tolerance = 1e-12;   // exact, extrapolation: local error per step, relative to
+                              // the speed scale
+  int max_steps = 10000;      // exact, extrapolation: work bound on steps (extrapolation:
+                              // accepted plus rejected; a slide lingering near zero slip
+                              // needs more than 2000, cushion_impact_test.cpp,
+                              // LongSlideNearZeroSlip...)
   const ImpactTable* table = nullptr;    // table: the surrogate (required)
   // table: the exact method's tolerance for the impacts the table does not answer;
   // 0 matches it to the table's accuracy (ImpactTable::fallback_tolerance()).
   double table_fallback_tolerance = 0.0;
-  std::vector<TraceSample>* trace = nullptr;  // optional slip history (exact, paper)
+  std::vector<TraceSample>* trace = nullptr;  // optional slip history (exact,
+                                              // extrapolation, paper; not in batches)
+  // resolve_impacts with the exact method: impacts side by side in SIMD lanes, 0 for
+  // the widest the CPU has (8 with AVX-512, 4 with AVX2, else 2 with SSE2), or 1, 2, 4
+  // or 8 (a width the CPU lacks falls back to the widest it has). Results do not
+  // depend on it: every lane computes bit for bit what resolve_impact computes.
+  int batch_lanes = 0;
 
   // Empty when every field is in range (those of the other methods too); otherwise the
   // first broken rule, fields named as these members. (resolve_impact also needs a
@@ -144,12 +154,24 @@ struct ImpactResult {
   std::array<SlipTransition, kMaxTransitions> transitions{};
   int transition_count = 0;
 
-  int rhs_evaluations = 0;  // right-hand side calls: the work the method did
+  // The work the method did: right-hand side calls (extrapolation, paper), or series
+  // orders computed (exact: each costs about one right-hand side call).
+  int rhs_evaluations = 0;
 };
 
 // Resolves one impact. Never throws for bad numbers: invalid input comes back as
 // status invalid_input with a message naming the field.
 ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
                             const ImpactOptions& options = {});
+
+// Resolves in.size() independent impacts with the same parameters and options:
+// out[i] is bit for bit resolve_impact(params, in[i], options). With the exact method
+// (alone or for the table's fallbacks) the impacts run side by side in SIMD lanes
+// (options.batch_lanes), chosen at run time for the CPU. Single-threaded: to use
+// several threads, give each a part of the batch. When out.size() differs from
+// in.size(), every element of out gets invalid_input with a message naming `out`.
+// options.trace must be null (a batch records no slip histories).
+void resolve_impacts(const CushionParams& params, std::span<const BallState> in,
+                     std::span<ImpactResult> out, const ImpactOptions& options = {});
 
 }  // namespace cueplan::physics

@@ -164,8 +164,8 @@ struct SimulationOptions {
 };
 
 // The impact method simulate() uses for cushion contacts with these options: the
-// table where its measured error meets options.impact_accuracy, paper when asked for,
-// else exact (at a tolerance that meets the accuracy).
+// table where its measured error meets options.impact_accuracy, paper or
+// extrapolation when asked for, else exact (at a tolerance that meets the accuracy).
 ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options);
 
 struct ShotResult {
