@@ -11,6 +11,8 @@ packages=(
   libeigen3-dev libnlopt-cxx-dev libyaml-cpp-dev zlib1g-dev
   libompl-dev librapidcheck-dev libfmt-dev
   clang libclang-rt-14-dev
+  libcpp-httplib-dev
+  chromium chromium-driver python3-selenium
 )
 
 missing=()

@@ -220,6 +220,13 @@ WebServer::WebServer(ServerOptions options) {
   Impl& s = *impl_;
   const int connections = s.slots.size() + kSpareConnections;
   s.http.new_task_queue = [connections] { return new httplib::ThreadPool(connections); };
+  // SO_REUSEADDR only: a restarted server gets its port back at once, but (unlike
+  // httplib's default, which adds SO_REUSEPORT) a second server cannot share a port that
+  // one already listens on.
+  s.http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   s.http.set_payload_max_length(s.options.max_body_bytes);
   s.http.set_keep_alive_timeout(kKeepAliveSeconds);
   s.http.set_read_timeout(kSocketTimeoutSeconds);
