@@ -19,9 +19,8 @@ foreach(file IN LISTS FILES)
   file(READ "${file}" hex HEX)
   string(LENGTH "${hex}" hex_length)
   math(EXPR size "${hex_length} / 2")
-  # Two hex digits a byte, sixteen bytes a line.
+  # Two hex digits a byte, each a character literal.
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "'\\\\x\\1'," bytes "${hex}")
-  string(REGEX REPLACE "(('[^']*',){16})" "\\1\n    " bytes "${bytes}")
   if(size EQUAL 0)
     set(bytes "'\\0'")
   endif()

@@ -151,7 +151,7 @@ int ServeCommand::run(std::ostream& out, std::ostream& err) const {
         if (sigwait(&signals, &signal) != 0 || finished) return;
         if (++received == 1) {
           note(std::string("stopping (") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-               "): requests being computed finish first; a second Ctrl-C ends at once");
+               "): requests being computed finish first; a second signal ends it at once");
           server.stop();
         } else {
           note("stopped at once");

@@ -21,8 +21,8 @@ const sleep = (ms, signal) =>
 
 // GET (body undefined) or POST a JSON body; resolves to the answer's JSON. A 503 (all
 // workers busy, or an impact table still being made) is asked again after the server's
-// Retry-After, up to `retries` times; onWait(message) says so meanwhile.
-export async function call(path, body, { signal, onWait, retries = 30 } = {}) {
+// Retry-After, up to `retries` times; onWait(message, answer) says so meanwhile.
+export async function call(path, body, { signal, onWait, retries = 60 } = {}) {
   for (let attempt = 0; ; ++attempt) {
     let response;
     try {
@@ -46,7 +46,7 @@ export async function call(path, body, { signal, onWait, retries = 30 } = {}) {
     const message = answer?.error ?? `the server answered HTTP ${response.status}`;
     if (response.status === 503 && attempt < retries) {
       const seconds = Number(response.headers.get("Retry-After")) || 1;
-      onWait?.(message);
+      onWait?.(message, answer);
       await sleep(seconds * 1000, signal);
       continue;
     }

@@ -98,11 +98,20 @@ function clearError() {
 }
 
 // Runs one request with the progress line shown; errors land in the error box.
+// What the progress line says while the server asks the page to come back (503).
+function waitWords(message, answer) {
+  if (!answer) return message;
+  if (answer.impact_table)
+    return "Waiting for the impact table of this cushion (made once; loading takes a second, " +
+      "a first build about 30 s)...";
+  return "The server is busy; asking again...";
+}
+
 async function task(text, work) {
   clearError();
   const say = busy(text);
   try {
-    await work((waitText) => say(waitText));
+    await work((message, answer) => say(waitWords(message, answer)));
   } catch (e) {
     if (!e.aborted) showError(e);
   } finally {
@@ -154,9 +163,11 @@ function selectExample(index) {
 // The pot's place: an object ball into a pocket, for problems that have object balls.
 function fillPot() {
   const balls = state.problem.balls ?? [];
+  const pockets = state.scene.pockets;
   const ball = $("pot-ball"), pocket = $("pot-pocket");
   ball.replaceChildren(...(balls.length ? balls : [{ name: "none on this table" }]).map((b) => new Option(b.name)));
-  pocket.replaceChildren(...state.scene.pockets.map((p) => new Option(p.name.replace("_", " "))));
+  pocket.replaceChildren(...(pockets.length ? pockets.map((p) => p.name.replace("_", " "))
+    : ["no pockets on this table"]).map((name) => new Option(name)));
   ball.disabled = pocket.disabled = balls.length === 0;
   $("pot-note").textContent = balls.length
     ? "Choose the ball to pot and its pocket."
@@ -327,20 +338,22 @@ function renderPlan() {
   const shown = state.shown === 0 ? r : r.alternatives[state.shown - 1];
   const box = $("result");
   box.replaceChildren();
-  const head = document.createElement("p");
-  head.className = r.status === "solved" ? "status-solved" : "status-other";
-  head.textContent = { solved: "Solved", no_solution_found: "No solution found",
-    budget_exhausted: "Budget exhausted" }[r.status] ?? r.status;
   const words = document.createElement("p");
   words.className = "words";
-  words.id = "stroke-words";
-  words.textContent = `${shown.stroke}, aim ${fixed(shown.shot.aim_deg, 2)} deg` +
+  const head = document.createElement("span");
+  head.className = r.status === "solved" ? "status-solved" : "status-other";
+  head.textContent = ({ solved: "Solved", no_solution_found: "No solution found",
+    budget_exhausted: "Budget exhausted" }[r.status] ?? r.status) + ": ";
+  const stroke = document.createElement("span");
+  stroke.id = "stroke-words";
+  stroke.textContent = `${shown.stroke}, aim ${fixed(shown.shot.aim_deg, 2)} deg` +
     (state.shown ? ` (alternative ${state.shown})` : "");
+  words.append(head, stroke);
   const message = document.createElement("p");
   message.className = "note";
   message.textContent = r.message;
   const s = shown.shot;
-  box.append(head, words, message, dl([
+  box.append(words, message, dl([
     ["speed", `${fixed(s.speed, 3)} m/s`],
     ["aim", `${fixed(s.aim_deg, 2)} deg`],
     ["tip offset", `${tipWords(shown.tip_offset.right, shown.tip_offset.up)} (k_T = ${fixed(s.topspin_k, 3)}, k_S = ${fixed(s.sidespin_k, 3)})`],
@@ -377,6 +390,7 @@ function renderPlan() {
         const td = row.insertCell();
         td.textContent = text;
         if (c >= 2 && c <= 5) td.className = "num";
+        if (c === 1) td.className = "stroke";
       });
       const show = document.createElement("button");
       show.type = "button";

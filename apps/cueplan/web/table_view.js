@@ -203,7 +203,7 @@ export class TableView {
 
   drawPath(shot, style) {
     const width = style === "faint" ? 0.006 : style === "hover" ? 0.009 : 0.012;
-    const g = el("g", { class: `path ${style}`, opacity: style === "faint" ? 0.75 : 1 }, this.pathLayer);
+    const g = el("g", { class: `path ${style}`, opacity: style === "faint" ? 0.55 : 1 }, this.pathLayer);
     // Consecutive segments of one motion make one SVG path of quadratic Bezier pieces
     // (exact: the ball moves on parabolas between events).
     let d = "", motion = null;
