@@ -278,18 +278,14 @@ plan::PlannerOptions read_planner(const SearchInputs& in,
   return options;
 }
 
-// A library's field (planner options, spin map options, the problem) as the request
-// names it.
+// A library's field (planner options, spin map options, the shot, the problem) as the
+// request names it.
 std::string request_field(const phys::FieldPath& path) {
+  // The planner's, through the flags the command line names them by.
+  const std::string flag = name_of(path, planner_flag_names());
+  for (const OptionName& o : kPlannerOptions)
+    if (flag == o.flag) return std::string("options.") + o.key;
   static const std::initializer_list<FieldName> kNames = {
-      {{"max_evaluations"}, "options.max_evaluations"},
-      {{"max_time_s"}, "options.max_time"},
-      {{"local_starts"}, "options.starts"},
-      {{"noise", "scale"}, "options.noise"},
-      {{"robustness_samples"}, "options.samples"},
-      {{"max_alternatives"}, "options.alternatives"},
-      {{"simulation", "impact_accuracy"}, "options.accuracy"},
-      {{"simulation", "max_events"}, "options.max_events"},
       {{"max_events"}, "options.max_events"},
       {{"speed"}, "speed"},
       {{"aim_deg"}, "aim_deg"},
