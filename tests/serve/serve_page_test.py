@@ -5,10 +5,12 @@ Starts `cueplan serve` on a free port, loads the page at a laptop's size (1366 x
 plans a shipped example and checks that the stroke's words and its path appear, that the
 drawn path ends where the plan says the ball stops; draws the spin map and checks its
 colours against the command line's colour scale (computed by the C++ of
-spin_map_drawing.cpp, through serve_colour_reference); hovers a cell and checks that its
-path is drawn, clicks one and checks that the stroke controls take its spin; moves the cue
-ball with the keyboard into a pocket and checks that the server's error is shown with
-its field. Writes screenshots of these states to --out.
+spin_map_drawing.cpp, through serve_colour_reference); hovers cells and checks that each
+one's path is drawn and ends as far from the target as the map says, clicks one and
+checks that the stroke controls take its spin, plays it, moves the map's speed slider;
+drags the target with the mouse; moves the cue ball with the keyboard into a pocket and
+checks that the server's error is shown with its field. Writes screenshots of the plan,
+the spin map and the error to --out.
 
 Exit 0 on success, 1 on a failure, 77 (skipped) when no browser or driver is installed.
 """
@@ -246,6 +248,35 @@ def check_spin_map(driver, shots, reference):
           f"{driver.find_element(By.ID, 'spin-intro').text.split(',')[0]}")
 
 
+def check_dragging(driver):
+    # Drag the target 120 px right and 40 px up with the mouse: it lands where it was
+    # dropped, to the millimetre, and the plan drawn for the old place is taken away.
+    ring = driver.find_element(By.CSS_SELECTOR, "#table g.target circle.ring")
+    driver.execute_script("arguments[0].scrollIntoView({block: 'nearest'})", ring)
+    x, y = driver.execute_script(
+        "const b = arguments[0].getBoundingClientRect(); return [b.x + b.width / 2, b.y + b.height / 2];",
+        ring)
+    x, y = int(round(x)), int(round(y))
+    drop = (x + 120, y - 40)
+    expected = driver.execute_script("""
+        const svg = document.querySelector('#table g[transform]');
+        const p = new DOMPoint(arguments[0], arguments[1]).matrixTransform(svg.getScreenCTM().inverse());
+        return [p.x, p.y];""", *drop)
+    actions = ActionBuilder(driver)
+    actions.pointer_action.move_to_location(x, y).pointer_down()
+    for step in range(1, 7):
+        actions.pointer_action.move_to_location(x + 20 * step, y - round(40 * step / 6))
+    actions.pointer_action.pointer_up()
+    actions.perform()
+    ring = driver.find_element(By.CSS_SELECTOR, "#table g.target circle.ring")
+    moved = (float(ring.get_attribute("cx")), float(ring.get_attribute("cy")))
+    if math.dist(moved, expected) > 0.0015:
+        fail(f"the target was dropped at {expected}, it is drawn at {moved}")
+    if driver.find_elements(By.CSS_SELECTOR, "#table g.path.main path"):
+        fail("the old plan's path is still drawn after the target moved")
+    print(f"drag: the target moved to ({moved[0]:.3f}, {moved[1]:.3f}) m")
+
+
 def check_error(driver, shots):
     # Drive the cue ball with the keyboard into the bottom left corner, inside its pocket.
     cue = driver.find_element(By.CSS_SELECTOR, "#table g.ball[aria-label^='cue ball']")
@@ -294,6 +325,7 @@ def main():
                 fail(f"the page opened on {chosen!r}")
             check_plan(driver, args.out)
             check_spin_map(driver, args.out, args.reference)
+            check_dragging(driver)
             check_error(driver, args.out)
             # (Less the 400s the test provoked: the cue ball in a pocket.)
             logs = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"
