@@ -209,7 +209,7 @@ export class TableView {
     let d = "", motion = null;
     const flush = () => {
       if (!d) return;
-      const colour = style === "faint" ? "#b8b8b8" : motion === "sliding" ? SLIDING : ROLLING;
+      const colour = style === "faint" ? "#dcdcdc" : motion === "sliding" ? SLIDING : ROLLING;
       el("path", { d, stroke: colour, "stroke-width": width, "data-motion": motion }, g);
       d = "";
     };
