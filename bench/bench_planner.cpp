@@ -15,18 +15,26 @@
 // Options: --problems DIR (default: the source tree's problems/), --generated N (50),
 // --seeds N (plans per problem with seeds 1..N, 2), --global M / --local M (those
 // pairings only; "none" skips them), --tight-evaluations N (the second pairing table's
-// budget, 400), --sweep-global M / --sweep-local M (the methods the time sweep is
+// budget, 400; 0 skips it), --sweep-global M / --sweep-local M (the methods the time sweep is
 // centred on; default: PlannerOptions' defaults), --no-sweep, --out FILE (JSON),
 // --per-run (every plan's status, time and evaluations in the JSON too); and
 // to try other settings: --max-evaluations N, --global-share F, --local-starts N,
-// --samples N.
+// --samples N, --stop-at-first-solution.
+//
+// Besides success and time, each row reports what the answers are worth to a player:
+// the mean success probability of the answer (solved plans) judged on fresh noise
+// draws the planner never saw (seed + 1000003, 400 strokes), the same for the
+// generated problems' known strokes (the witnesses), and how often the answer
+// succeeds at least as often as the witness.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +55,7 @@ struct Case {
   std::string set;  // "shipped" or "generated"
   problems::Problem problem;
   physics::SimulationOptions simulation;  // with a table covering the problem
+  std::optional<physics::Shot> witness;   // generated: the stroke the target came from
 };
 
 struct Run {
@@ -55,9 +64,12 @@ struct Run {
   bool solved = false;
   std::string status;
   double time_s = 0.0;
+  double cpu_s = 0.0;  // the plan's thread's CPU time (plans run on one thread here)
   int evaluations = 0;
   int families = 0;
   double miss = 0.0;
+  double answer_p = -1.0;   // the answer's success probability on fresh draws (solved plans)
+  double witness_p = -1.0;  // the witness's, on the same fresh draws (generated problems)
 };
 
 struct Summary {
@@ -78,17 +90,22 @@ double percentile(std::vector<double> v, double q) {
 
 struct Stats {
   double success = 0.0, shipped = 0.0, generated = 0.0, median_ms = 0.0, p95_ms = 0.0,
-         plans_per_s = 0.0, mean_evaluations = 0.0, mean_families = 0.0;
+         plans_per_s = 0.0, mean_evaluations = 0.0, mean_families = 0.0, cpu_median_ms = 0.0,
+         cpu_p95_ms = 0.0;
   int no_solution = 0, exhausted = 0;
+  // The answers' success probabilities (solved plans), and on generated problems the
+  // fraction whose answer succeeds at least as often as the witness.
+  double mean_answer_p = 0.0, mean_witness_p = 0.0, at_least_witness = 0.0;
 };
 
 Stats stats(const std::vector<Run>& runs) {
   Stats s;
-  std::vector<double> times;
+  std::vector<double> times, cpu;
   int n_ship = 0, n_gen = 0, ok_ship = 0, ok_gen = 0;
   double total = 0.0;
   for (const Run& r : runs) {
     times.push_back(r.time_s);
+    cpu.push_back(r.cpu_s);
     total += r.time_s;
     s.mean_evaluations += r.evaluations;
     s.mean_families += r.families;
@@ -102,17 +119,45 @@ Stats stats(const std::vector<Run>& runs) {
     s.no_solution += r.status == "no_solution_found";
     s.exhausted += r.status == "budget_exhausted";
   }
+  int answered = 0, compared = 0;
+  for (const Run& r : runs) {
+    if (r.answer_p < 0.0) continue;
+    ++answered;
+    s.mean_answer_p += r.answer_p;
+    if (r.witness_p < 0.0) continue;
+    ++compared;
+    s.mean_witness_p += r.witness_p;
+    s.at_least_witness += r.answer_p >= r.witness_p;
+  }
+  if (answered) s.mean_answer_p /= answered;
+  if (compared) {
+    s.mean_witness_p /= compared;
+    s.at_least_witness /= compared;
+  }
   const double n = static_cast<double>(runs.size());
   s.success = (ok_ship + ok_gen) / n;
   s.shipped = n_ship ? static_cast<double>(ok_ship) / n_ship : 0.0;
   s.generated = n_gen ? static_cast<double>(ok_gen) / n_gen : 0.0;
   s.median_ms = 1e3 * percentile(times, 0.5);
   s.p95_ms = 1e3 * percentile(times, 0.95);
+  s.cpu_median_ms = 1e3 * percentile(cpu, 0.5);
+  s.cpu_p95_ms = 1e3 * percentile(cpu, 0.95);
   s.plans_per_s = n / total;
   s.mean_evaluations /= n;
   s.mean_families /= n;
   return s;
 }
+
+// CPU time of the calling thread (s): on a machine shared with other work, the
+// steadier measure of what a plan costs.
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+constexpr uint64_t kFreshSeed = 1000003;  // added to the plan's seed
+constexpr int kFreshSamples = 400;
 
 std::vector<Run> run_all(const std::vector<Case>& cases, planner::PlannerOptions options,
                          int seeds) {
@@ -121,8 +166,11 @@ std::vector<Run> run_all(const std::vector<Case>& cases, planner::PlannerOptions
     for (int seed = 1; seed <= seeds; ++seed) {
       options.seed = static_cast<uint64_t>(seed);
       options.simulation = c.simulation;
+      const double cpu0 = thread_cpu_s();
       const planner::PlanResult r = planner::plan(c.problem, options);
+      const double cpu1 = thread_cpu_s();
       Run run;
+      run.cpu_s = cpu1 - cpu0;
       run.set = c.set;
       run.name = c.problem.name;
       run.seed = options.seed;
@@ -132,6 +180,16 @@ std::vector<Run> run_all(const std::vector<Case>& cases, planner::PlannerOptions
       run.evaluations = r.evaluations;
       run.families = run.solved ? 1 + static_cast<int>(r.alternatives.size()) : 0;
       run.miss = r.best.miss_distance;
+      // The answer's success judged afresh: on draws the planner never saw (another
+      // seed), so that picking the best of several noisy estimates does not flatter it.
+      if (run.solved && options.robustness_samples > 0) {
+        const uint64_t fresh = options.seed + kFreshSeed;
+        run.answer_p = planner::success_probability(c.problem, r.best.shot, options.noise,
+                                                    kFreshSamples, fresh, options.simulation);
+        if (c.witness)
+          run.witness_p = planner::success_probability(c.problem, *c.witness, options.noise,
+                                                       kFreshSamples, fresh, options.simulation);
+      }
       runs.push_back(run);
     }
   return runs;
@@ -146,11 +204,14 @@ std::string json_summary(const Summary& s, bool per_run) {
                 "\"plans\": %zu, \"success\": %.6g, \"success_shipped\": %.6g, "
                 "\"success_generated\": %.6g, \"median_ms\": %.6g, \"p95_ms\": %.6g, "
                 "\"plans_per_s\": %.6g, \"mean_evaluations\": %.6g, \"mean_families\": %.6g, "
-                "\"no_solution_found\": %d, \"budget_exhausted\": %d",
+                "\"no_solution_found\": %d, \"budget_exhausted\": %d, \"mean_answer_p\": %.6g, "
+                "\"mean_witness_p\": %.6g, \"at_least_witness\": %.6g, \"cpu_median_ms\": %.6g, "
+                "\"cpu_p95_ms\": %.6g",
                 s.global.c_str(), s.local.c_str(), s.label.c_str(), s.budget_s, s.max_evaluations,
                 s.runs.size(),
                 t.success, t.shipped, t.generated, t.median_ms, t.p95_ms, t.plans_per_s,
-                t.mean_evaluations, t.mean_families, t.no_solution, t.exhausted);
+                t.mean_evaluations, t.mean_families, t.no_solution, t.exhausted, t.mean_answer_p,
+                t.mean_witness_p, t.at_least_witness, t.cpu_median_ms, t.cpu_p95_ms);
   std::string out = buf;
   if (!per_run) return out + "}";
   out += ", \"runs\": [";
@@ -169,10 +230,12 @@ std::string json_summary(const Summary& s, bool per_run) {
 
 void print_row(const Summary& s) {
   const Stats t = stats(s.runs);
-  std::printf("| %s | %s | %.1f %% | %.0f %% | %.1f %% | %.2f ms | %.2f ms | %.0f | %.0f | %.1f | %d | %d |\n",
+  std::printf("| %s | %s | %.1f %% | %.0f %% | %.1f %% | %.2f ms | %.2f ms | %.0f | %.0f | %.1f | %d | %d "
+              "| %.1f %% | %.1f %% | %.0f %% | %.2f ms | %.2f ms |\n",
               s.global.c_str(), s.local.c_str(), 100 * t.success, 100 * t.shipped,
               100 * t.generated, t.median_ms, t.p95_ms, t.plans_per_s, t.mean_evaluations,
-              t.mean_families, t.no_solution, t.exhausted);
+              t.mean_families, t.no_solution, t.exhausted, 100 * t.mean_answer_p,
+              100 * t.mean_witness_p, 100 * t.at_least_witness, t.cpu_median_ms, t.cpu_p95_ms);
   std::fflush(stdout);
 }
 
@@ -183,6 +246,7 @@ int main(int argc, char** argv) {
   int generated = 50, seeds = 2, tight_evaluations = 400;
   bool sweep = true, per_run = false;
   int base_evaluations = -1, base_starts = -1, base_samples = -1;
+  bool first_solution = false;
   double base_share = -1.0;
   planner::PlannerOptions defaults;
   planner::GlobalMethod sweep_global = defaults.global;
@@ -209,6 +273,7 @@ int main(int argc, char** argv) {
     else if (a == "--global-share") base_share = std::atof(value().c_str());
     else if (a == "--local-starts") base_starts = std::atoi(value().c_str());
     else if (a == "--samples") base_samples = std::atoi(value().c_str());
+    else if (a == "--stop-at-first-solution") first_solution = true;
     else if (a == "--out") out_path = value();
     else if (a == "--per-run") per_run = true;
     else {
@@ -255,7 +320,7 @@ int main(int argc, char** argv) {
   for (Case& c : cases) c.simulation = simulation_for(c.problem.scene.ball_and_cushion);
   const physics::SimulationOptions snooker = simulation_for(physics::snooker_scene().ball_and_cushion);
   for (auto& k : planner::known_shot_problems(generated, 2026, snooker))
-    cases.push_back({"generated", std::move(k.problem), snooker});
+    cases.push_back({"generated", std::move(k.problem), snooker, k.shot});
   std::fprintf(stderr, "%zu shipped and %d generated problems, %d seeds each\n", files.size(),
                generated, seeds);
 
@@ -264,6 +329,7 @@ int main(int argc, char** argv) {
   if (base_share > 0) base.global_share = base_share;
   if (base_starts > 0) base.local_starts = base_starts;
   if (base_samples >= 0) base.robustness_samples = base_samples;
+  base.stop_at_first_solution = first_solution;
   if (physics::Validation e = base.validate()) {
     std::fprintf(stderr, "bench_planner: %s\n", e->message().c_str());
     return 2;
@@ -282,11 +348,15 @@ int main(int argc, char** argv) {
   const planner::LocalMethod locals[] = {planner::LocalMethod::bobyqa, planner::LocalMethod::sbplx,
                                          planner::LocalMethod::cobyla, planner::LocalMethod::neldermead};
   std::vector<Summary> pairings, budgets;
-  for (int budget : {base.max_evaluations, tight_evaluations}) {
+  std::vector<int> pairing_budgets{base.max_evaluations};
+  if (tight_evaluations > 0) pairing_budgets.push_back(tight_evaluations);
+  for (int budget : pairing_budgets) {
     std::printf("\nevery pairing, max_evaluations %d\n\n"
                 "| global | local | success | shipped | generated | median | p95 | plans/s | "
-                "mean evaluations | mean families (solved) | no solution found | budget exhausted |\n"
-                "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", budget);
+                "mean evaluations | mean families (solved) | no solution found | budget exhausted | "
+                "answer P | witness P | answer >= witness | CPU median | CPU p95 |\n"
+                "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+                budget);
     for (auto g : globals)
       for (auto l : locals) {
         if (!only_global.empty() && only_global != planner::to_string(g)) continue;

@@ -22,14 +22,14 @@ def pairing_tables(data):
         rows = [p for p in data["pairings"] if p["max_evaluations"] == budget]
         out.append(f"max_evaluations = {budget}:\n")
         out.append("| global | local | success | shipped | generated | median | p95 | plans/s |"
-                   " mean simulations | solutions per solved plan | unreachable | budget exhausted |")
+                   " mean simulations | solutions per solved plan | no solution found | budget exhausted |")
         out.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         for p in rows:
             out.append(f"| {p['global']} | {p['local']} | {100 * p['success']:.1f} % |"
                        f" {100 * p['success_shipped']:.1f} % | {100 * p['success_generated']:.1f} % |"
                        f" {p['median_ms']:.2f} ms | {p['p95_ms']:.2f} ms | {p['plans_per_s']:.0f} |"
                        f" {p['mean_evaluations']:.0f} | {p['mean_families']:.1f} |"
-                       f" {p['unreachable']} | {p['budget_exhausted']} |")
+                       f" {p.get('no_solution_found', p.get('unreachable'))} | {p['budget_exhausted']} |")
         out.append("")
     return "\n".join(out)
 

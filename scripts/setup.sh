@@ -8,8 +8,10 @@ packages=(
   build-essential cmake pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev
-  libeigen3-dev libnlopt-cxx-dev libyaml-cpp-dev zlib1g-dev
+  libeigen3-dev libnlopt-cxx-dev libyaml-cpp-dev
   libompl-dev librapidcheck-dev libfmt-dev
+  libcairo2-dev libpango1.0-dev fonts-dejavu-core
+  librsvg2-dev libxml2-dev poppler-utils
   clang libclang-rt-14-dev
   libcpp-httplib-dev
   chromium chromium-driver python3-selenium

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "collide_command.hpp"
 #include "exit_codes.hpp"
 #include "figures_command.hpp"
 #include "rebound_command.hpp"
@@ -80,15 +81,16 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   // Every command is registered here and nowhere else: construct it on `app` (its flags
   // bind into it, so it lives until the end of this function) and list it in `commands`.
   ReboundCommand rebound(app);
+  CollideCommand collide(app);
   SimulateCommand simulate(app);
   FiguresCommand figures(app);
   SolveCommand solve(app);
   SpinmapCommand spinmap(app);
   RouteCommand route(app);
   ServeCommand serve(app);
-  const std::vector<CommandEntry> commands = {entry(rebound), entry(simulate), entry(figures),
-                                              entry(solve),   entry(spinmap),  entry(route),
-                                              entry(serve)};
+  const std::vector<CommandEntry> commands = {entry(rebound), entry(collide), entry(simulate),
+                                              entry(figures), entry(solve),   entry(spinmap),
+                                              entry(route),   entry(serve)};
 
   try {
     app.parse(argc, argv);

@@ -9,15 +9,21 @@
 #include <vector>
 
 #include "csv.hpp"
+#include "cueplan/draw/plot.hpp"
 #include "cueplan/physics/cushion_impact.hpp"
 #include "exit_codes.hpp"
 #include "output_file.hpp"
-#include "svg_plot.hpp"
 
 namespace cueplan::cli {
 namespace {
 
 namespace phys = cueplan::physics;
+using draw::palette_colour;
+using draw::PlotAxis;
+using draw::PlotFigure;
+using draw::PlotMarker;
+using draw::PlotPanel;
+using draw::PlotSeries;
 
 constexpr const char* kCommandName = "cueplan figures";
 constexpr const char* kAlphaLabel = "incidence angle \u03b1 (deg)";
@@ -41,10 +47,10 @@ struct IncidenceFigure {
   std::string angle_note;  // added to the angle panel's title, e.g. "curves coincide"
 };
 
-// What one figure writes: the SVG and the numbers behind it.
+// What one figure writes: the picture and the numbers behind it.
 struct RenderedFigure {
   std::string file_stem;
-  std::string svg;
+  draw::Picture picture;
   std::string csv;
   int unusable_points = 0;  // impacts without a usable result (left out of the plot)
 };
@@ -144,7 +150,7 @@ RenderedFigure render_incidence_figure(const IncidenceFigure& figure,
   PlotFigure plot{figure.title,
                   figure.caption + "; " + parameters_caption(params),
                   {std::move(speed_panel), std::move(angle_panel)}};
-  rendered.svg = render_svg(plot);
+  rendered.picture = draw::plot_picture(plot);
   rendered.csv = table.to_string();
   return rendered;
 }
@@ -236,7 +242,7 @@ RenderedFigure render_slip_figure(const phys::CushionParams& params) {
                   "\u03c9_{T} = 1.5V_{0}/R; " +
                       parameters_caption(params),
                   {std::move(speeds), std::move(angles)}};
-  rendered.svg = render_svg(plot);
+  rendered.picture = draw::plot_picture(plot);
   rendered.csv = table.to_string();
   return rendered;
 }
@@ -290,12 +296,15 @@ std::vector<IncidenceFigure> paper_incidence_figures() {
 FiguresCommand::FiguresCommand(CLI::App& parent) {
   command_ = parent.add_subcommand(
       "figures",
-      "Redraw figures 8, 9, 10 and 12 of Mathavan, Jackson & Parkin (2010) as SVG files, "
-      "each with a CSV of the plotted numbers beside it.");
+      "Redraw figures 8, 9, 10 and 12 of Mathavan, Jackson & Parkin (2010) as SVG, PNG or PDF "
+      "files, each with a CSV of the plotted numbers beside it.");
   CLI::App& c = *command_;
   c.add_option("--out", args_.out_dir, "Directory for the files (created if missing)")
       ->type_name("DIR")
       ->required();
+  c.add_option("--format", args_.format, "Picture format: svg, png or pdf")
+      ->type_name("FORMAT")
+      ->capture_default_str();
   c.add_option("--alpha-step", args_.alpha_step_deg,
                "Spacing of the incidence angles over (0, 90] (deg), in (0, 90]")
       ->type_name("deg")
@@ -303,7 +312,8 @@ FiguresCommand::FiguresCommand(CLI::App& parent) {
   c.footer(
       "Files: fig08_rolling, fig09_topspin, fig10_sidespin (rebound speed and angle versus "
       "incidence angle) and fig12_slip_vs_impulse (slip speeds s, s' and angles Phi, Phi' "
-      "versus the cushion impulse P_I), each as .svg and .csv. CSV numbers are SI (m/s, "
+      "versus the cushion impulse P_I), each as a picture (.svg, .png or .pdf, by --format) and "
+      ".csv. CSV numbers are SI (m/s, "
       "rad/s, N s, J) unless the column name ends in _deg; the rebound CSVs have the columns "
       "of `cueplan rebound --batch` output except its message. Paper defaults (snooker), exact method.\n"
       "Exit codes: 0 done, 1 some impacts had no usable result, 2 bad input or unwritable "
@@ -317,6 +327,8 @@ std::string FiguresCommand::check_flags() const {
   if (!std::isfinite(step) || !(step > 0.0) || !(step <= 90.0))
     return "--alpha-step must lie in (0, 90] degrees, got " + format_number(step);
   if (args_.out_dir.empty()) return "--out must name a directory, got ''";
+  if (!draw::format_of("figure." + args_.format))
+    return "--format must be svg, png or pdf, got '" + args_.format + "'";
   // A directory that is missing is created by run(); a file in its place is an error.
   std::error_code ec;
   if (std::filesystem::exists(args_.out_dir, ec) &&
@@ -346,13 +358,14 @@ int FiguresCommand::run(std::ostream& out, std::ostream& err) const {
 
   int unusable = 0;
   for (const RenderedFigure& figure : figures) {
-    for (const auto& [extension, contents] :
-         {std::pair{".svg", &figure.svg}, std::pair{".csv", &figure.csv}}) {
-      const std::filesystem::path path = dir / (figure.file_stem + extension);
-      if (std::string why = write_file_atomically(path, *contents); !why.empty())
-        return usage("--out: " + why);
-      out << path.string() << '\n';
-    }
+    const std::filesystem::path picture = dir / (figure.file_stem + "." + args_.format);
+    if (std::string why = write_picture(picture, figure.picture); !why.empty())
+      return usage("--out: " + why);
+    out << picture.string() << '\n';
+    const std::filesystem::path csv = dir / (figure.file_stem + ".csv");
+    if (std::string why = write_file_atomically(csv, figure.csv); !why.empty())
+      return usage("--out: " + why);
+    out << csv.string() << '\n';
     unusable += figure.unusable_points;
   }
   if (unusable > 0) {

@@ -1,5 +1,5 @@
 // `cueplan figures`: redraws figures 8, 9, 10 and 12 of Mathavan, Jackson & Parkin
-// (2010) as SVG files, each with a CSV of the plotted numbers beside it.
+// (2010) as SVG, PNG or PDF files, each with a CSV of the plotted numbers beside it.
 #pragma once
 
 #include <iosfwd>
@@ -13,6 +13,7 @@ namespace cueplan::cli {
 
 struct FiguresArgs {
   std::string out_dir;          // created if missing
+  std::string format = "svg";   // svg, png or pdf
   double alpha_step_deg = 0.5;  // spacing of the incidence angles over (0, 90]
 };
 

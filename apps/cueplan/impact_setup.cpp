@@ -59,7 +59,7 @@ std::string read_impact_options(const ImpactArgs& args, phys::SimulationOptions*
 int prepare_impact_table(const char* command, const phys::Scene& scene,
                          const std::string& table_cache, int threads, bool accuracy_given,
                          phys::ImpactTable* table, phys::SimulationOptions* options,
-                         std::ostream& err) {
+                         std::ostream& err, bool* built) {
   const phys::CushionParams& params = scene.ball_and_cushion;
   const std::string cache_dir = table_cache.empty() ? default_table_cache_dir() : table_cache;
   if (std::string why = ensure_directory(cache_dir); !why.empty()) {
@@ -70,7 +70,9 @@ int prepare_impact_table(const char* command, const phys::Scene& scene,
   const std::filesystem::path file =
       std::filesystem::path(cache_dir) / phys::ImpactTable::cache_file_name(params, {});
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec))
+  const bool first_build = !std::filesystem::exists(file, ec);
+  if (built) *built = first_build;
+  if (first_build)
     err << command << ": building the impact table for this cushion (once; about 30 s on "
         << "2 cores), to be cached in " << cache_dir << '\n';
   std::string note;

@@ -42,10 +42,11 @@ std::string read_impact_options(const ImpactArgs& args, physics::SimulationOptio
 // points options->table at *table. Unless the accuracy was given, the table's own
 // measured error becomes the accuracy. Notes go to `err`, each line led by `command`.
 // Returns an ExitCode: kExitOk, or the code to stop with (its line already written).
+// *built (when given) says whether the table had to be built, not loaded from the cache.
 int prepare_impact_table(const char* command, const physics::Scene& scene,
                          const std::string& table_cache, int threads, bool accuracy_given,
                          physics::ImpactTable* table, physics::SimulationOptions* options,
-                         std::ostream& err);
+                         std::ostream& err, bool* built = nullptr);
 
 // Points options->table at `table` (which must outlive its use). Unless the accuracy
 // was given, the table's own measured error becomes the accuracy. Returns a note when

@@ -33,6 +33,22 @@ std::string check_output_file(const std::filesystem::path& path) {
   return {};
 }
 
+std::string check_picture_file(const std::string& flag, const std::filesystem::path& path) {
+  if (!draw::format_of(path))
+    return flag + " must name a .svg, .png or .pdf file (the extension chooses the format), got '" +
+           path.string() + "'";
+  if (std::string why = check_output_file(path); !why.empty()) return flag + ": " + why;
+  return {};
+}
+
+std::string write_picture(const std::filesystem::path& path, const draw::Picture& picture) {
+  const std::optional<draw::Format> format = draw::format_of(path);
+  if (!format) return "cannot tell the picture's format from " + path.string();
+  const draw::Encoded encoded = draw::encode(picture, *format);
+  if (!encoded.ok()) return encoded.error;
+  return write_file_atomically(path, encoded.bytes);
+}
+
 std::string write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
   // The process id keeps two concurrent writers of the same file apart.
   std::filesystem::path temporary = path;

@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "cueplan/draw/picture.hpp"
+
 namespace cueplan::cli {
 
 // Creates `dir` (and its parents) if missing. Empty when the directory exists
@@ -16,6 +18,15 @@ std::string ensure_directory(const std::filesystem::path& dir);
 // Commands check their output paths with it before any work, so that a bad path fails
 // fast and leaves nothing behind.
 std::string check_output_file(const std::filesystem::path& path);
+
+// check_output_file for a picture named by `flag` (e.g. "--svg"), whose extension must
+// choose its format (.svg, .png or .pdf): empty, or one line that names the flag, e.g.
+// "--svg must name a .svg, .png or .pdf file, got 'plan.jpg'".
+std::string check_picture_file(const std::string& flag, const std::filesystem::path& path);
+
+// Encodes `picture` in the format of `path`'s extension and writes it atomically. Empty
+// on success; otherwise one line (the caller names the flag).
+std::string write_picture(const std::filesystem::path& path, const draw::Picture& picture);
 
 // Writes `contents` to a temporary file beside `path` and renames it over `path`, so
 // a reader never sees a half-written file. Empty on success; otherwise one line.

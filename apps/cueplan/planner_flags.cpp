@@ -51,8 +51,11 @@ void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
       ->capture_default_str()
       ->group(group);
   c.add_option("--max-time", args->max_time_s,
-               "Budget: wall-clock time for the search (s), > 0. A search the clock ends is no "
-               "longer reproducible from its seed")
+               "Budget: wall-clock time for the whole command (s), > 0: loading the impact "
+               "table (not a first build), the search (up to 75 % of it), the exact "
+               "verification and the Monte Carlo (an estimate the clock cuts short counts the "
+               "strokes it played). A plan the clock ends is no longer reproducible from its "
+               "seed")
       ->type_name("S")
       ->capture_default_str()
       ->group(group);

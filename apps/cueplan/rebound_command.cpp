@@ -167,26 +167,7 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
                "90 is head-on. Required unless --batch is given.")
       ->type_name("deg")
       ->group(ball);
-  auto* topspin_k = c.add_option("--topspin-k", args_.topspin_k,
-                                 "Topspin k_T = w_T R / V0 (1: natural roll, 0: stun, < 0: draw)")
-                        ->type_name("k_T")
-                        ->capture_default_str()
-                        ->group(ball);
-  auto* sidespin_k =
-      c.add_option("--sidespin-k", args_.sidespin_k, "Sidespin k_S = w_S R / V0 (> 0: right spin)")
-          ->type_name("k_S")
-          ->capture_default_str()
-          ->group(ball);
-  c.add_option("--topspin", args_.topspin,
-               "Topspin w_T (rad/s) instead of --topspin-k; V0/R is natural roll")
-      ->type_name("rad/s")
-      ->excludes(topspin_k)
-      ->group(ball);
-  c.add_option("--sidespin", args_.sidespin,
-               "Sidespin w_S (rad/s) instead of --sidespin-k; > 0 is right spin")
-      ->type_name("rad/s")
-      ->excludes(sidespin_k)
-      ->group(ball);
+  add_spin_flags(c, &args_.spin, ball, "V0", "");
 
   const char* method = "Method";
   c.add_option("--method", args_.method,
@@ -308,19 +289,15 @@ std::string ReboundCommand::read_params(phys::CushionParams* params) const {
 std::string ReboundCommand::read_incidence(const phys::CushionParams& params, Incidence* in) const {
   if (!given("--speed")) return "--speed is required (m/s) unless --batch is given";
   if (!given("--angle")) return "--angle is required (deg) unless --batch is given";
-  // Each spin comes in rad/s or as k = w R / V0, whichever flag was given.
-  const bool topspin_rad = given("--topspin");
-  const bool sidespin_rad = given("--sidespin");
-  const IncidenceNames names = {"--speed", "--angle", topspin_rad ? "--topspin" : "--topspin-k",
-                                sidespin_rad ? "--sidespin" : "--sidespin-k"};
-  const double topspin = topspin_rad ? args_.topspin : args_.topspin_k;
-  const double sidespin = sidespin_rad ? args_.sidespin : args_.sidespin_k;
-  if (std::string why = check_incidence(args_.speed, args_.angle_deg, topspin, sidespin, names);
+  if (std::string why = check_incidence(args_.speed, args_.angle_deg, 0.0, 0.0, kFlagNames);
       !why.empty())
     return why;
-  const double spin_unit = args_.speed / params.radius;  // rad/s per unit of k
-  *in = {args_.speed, args_.angle_deg, topspin_rad ? topspin : topspin * spin_unit,
-         sidespin_rad ? sidespin : sidespin * spin_unit};
+  double topspin = 0.0, sidespin = 0.0;
+  if (std::string why =
+          read_spins(*command_, args_.spin, args_.speed, params.radius, &topspin, &sidespin);
+      !why.empty())
+    return why;
+  *in = {args_.speed, args_.angle_deg, topspin, sidespin};
   return {};
 }
 

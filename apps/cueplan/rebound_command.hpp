@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cueplan/physics/cushion_impact.hpp"
+#include "spin_flags.hpp"
 
 namespace CLI {
 class App;
@@ -19,10 +20,7 @@ namespace cueplan::cli {
 struct ReboundArgs {
   double speed = NAN;       // m/s, --speed
   double angle_deg = NAN;   // deg, --angle
-  double topspin_k = 1.0;   // --topspin-k, k_T = w_T R / V0
-  double sidespin_k = 0.0;  // --sidespin-k, k_S = w_S R / V0
-  double topspin = 0.0;     // rad/s, --topspin (replaces --topspin-k when given)
-  double sidespin = 0.0;    // rad/s, --sidespin (replaces --sidespin-k when given)
+  SpinArgs spin;            // --topspin-k, --sidespin-k, --topspin, --sidespin
   std::string method = physics::to_string(physics::ImpactOptions{}.method);
   int steps = physics::ImpactOptions{}.paper_steps;      // paper scheme N
   double tolerance = physics::ImpactOptions{}.tolerance;  // exact method
@@ -32,7 +30,7 @@ struct ReboundArgs {
   bool json = false;
   std::string batch_file;
   int threads = 0;          // batch threads; 0: one per core
-  std::string table_cache;  // empty: physics::default_table_cache_dir()
+  std::string table_cache;  // empty: default_table_cache_dir() (table_cache.hpp)
 };
 
 // One incoming ball as resolved from the flags.

@@ -8,6 +8,7 @@
 #include <ostream>
 #include <vector>
 
+#include "cueplan/draw/table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/route.hpp"
 #include "cueplan/problems/problem.hpp"
@@ -17,7 +18,6 @@
 #include "planner_flags.hpp"
 #include "shot_report.hpp"
 #include "shot_words.hpp"
-#include "table_drawing.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -158,19 +158,17 @@ nlohmann::ordered_json route_json(const prob::Problem& problem, const plan::Rout
 namespace {
 
 // ---------------------------------------------------------------------------
-// SVG: every stroke's path in order.
+// The drawing: every stroke's path in order, numbered.
 
-TableDrawing drawing_of(const prob::Problem& problem, const plan::RouteOptions& o,
-                        const plan::RouteResult& r) {
-  TableDrawing d;
-  d.scene = problem.scene;
-  d.cue_ball = problem.cue_ball;
-  d.target = TargetZone{problem.target, problem.tolerance};
+draw::TableScene drawing_of(const prob::Problem& problem, const plan::RouteOptions& o,
+                            const plan::RouteResult& r) {
+  draw::TableScene d = draw::problem_table(problem);
   phys::SimulationOptions exact;  // as the route was verified: exact, 1e-9
   exact.record_path = true;
   for (const plan::RouteStroke& s : r.strokes) {
     const phys::ShotResult sim = phys::simulate(problem.scene, s.start, s.planned.shot, exact);
-    d.paths.push_back({sim.path, sim.events, false});
+    const int stroke = static_cast<int>(d.balls.front().paths.size()) + 1;
+    d.balls.front().paths.push_back({sim.path, sim.events, false, stroke});
   }
   d.title = problem.name + ": " +
             (r.status == plan::RouteStatus::solved ? "route of " + strokes_text(static_cast<int>(r.strokes.size()))
@@ -188,7 +186,8 @@ TableDrawing drawing_of(const prob::Problem& problem, const plan::RouteOptions& 
   }
   if (r.strokes.empty()) d.caption.push_back(r.message);
   else if (r.strokes.size() > 1)
-    d.caption.push_back("Each stroke starts where the one before it stops (the at-rest marks).");
+    d.caption.push_back(
+        "Each stroke starts where the one before it stops (the ghosts where each comes to rest).");
   return d;
 }
 
@@ -254,9 +253,9 @@ RouteCommand::RouteCommand(CLI::App& parent) {
              "shot, with start and final_position in m and success_probability), time_s, ...")
       ->group(output);
   c.add_option("--svg", args_.svg_file,
-               "Also draw the route as an SVG file: the table, the target zone and every "
-               "stroke's path")
-      ->type_name("FILE.svg")
+               "Also draw the route: the table, the target zone and every stroke's path, "
+               "numbered; SVG, PNG or PDF by the file's extension")
+      ->type_name("FILE.svg|.png|.pdf")
       ->group(output);
   c.footer(
       "Status: solved (exit 0); unreachable - proven: obstacle balls or pockets wall the "
@@ -292,8 +291,8 @@ int RouteCommand::read(std::ostream& err, prob::Problem* problem_out,
                              {{"steer_evaluations"}, "--steer-evaluations"}};
   if (physics::Validation e = o.validate()) return usage(message_in(*e, flags));
   if (!args_.svg_file.empty())
-    if (std::string why = check_output_file(args_.svg_file); !why.empty())
-      return usage("--svg: " + why);
+    if (std::string why = check_picture_file("--svg", args_.svg_file); !why.empty())
+      return usage(why);
   const prob::LoadResult loaded = prob::load_problem(args_.problem_file);
   if (!loaded.ok()) return usage(loaded.error);
   const prob::Problem& problem = *loaded.problem;
@@ -321,8 +320,8 @@ int RouteCommand::run(std::ostream& out, std::ostream& err) const {
   if (result.status == plan::RouteStatus::invalid_input) return usage(result.message);
 
   if (!args_.svg_file.empty()) {
-    const std::string svg = render_table_svg(drawing_of(problem, o, result));
-    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+    const draw::Picture picture = draw::table_picture(drawing_of(problem, o, result));
+    if (std::string why = write_picture(args_.svg_file, picture); !why.empty())
       return usage("--svg: " + why);
   }
   if (args_.json)

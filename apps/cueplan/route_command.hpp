@@ -1,6 +1,6 @@
 // `cueplan route PROBLEM`: a short sequence of strokes that brings the cue ball to rest
 // on the target when one stroke cannot (planner::plan_route on OMPL's SST, RRT or
-// KPIECE1), reported stroke by stroke in a player's terms, as JSON, and drawn as SVG.
+// KPIECE1), reported stroke by stroke in a player's terms, as JSON, and drawn (SVG, PNG or PDF).
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,7 @@
 #include "shot_report.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
 #include <utility>
@@ -96,6 +98,23 @@ std::string landing_text(const plan::PlannedShot& p) {
 
 ordered_json point_json(phys::Vec2 v) { return {v.x, v.y}; }
 
+std::string estimate_text(const plan::Estimate& e) {
+  return fmt::format("{:.1f} % (95 % interval {:.1f}-{:.1f} %)", 100.0 * e.p, 100.0 * e.low,
+                     100.0 * e.high);
+}
+
+ordered_json estimate_json(const plan::Estimate& e) {
+  return {{"p", e.p}, {"low", e.low}, {"high", e.high}, {"samples", e.samples}};
+}
+
+ordered_json success_json(const plan::Success& s) {
+  ordered_json j;
+  if (s.pot) j["pot"] = estimate_json(*s.pot);
+  j["position"] = estimate_json(s.position);
+  j["both"] = estimate_json(s.both);
+  return j;
+}
+
 ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot& p,
                           bool enforce_rigid_limit) {
   ordered_json j;
@@ -112,6 +131,7 @@ ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot&
   j["miss_distance"] =
       std::isfinite(p.miss_distance) ? ordered_json(p.miss_distance) : ordered_json();
   j["success_probability"] = p.success_probability;
+  j["success"] = success_json(p.success);
   j["solves"] = p.solves;
   j["cushion_hits"] = p.cushion_hits;
   j["route"] = p.route;

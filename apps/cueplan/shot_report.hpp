@@ -31,6 +31,14 @@ std::string landing_text(const planner::PlannedShot& p);
 // [x, y] in m.
 nlohmann::ordered_json point_json(physics::Vec2 v);
 
+// A Monte Carlo estimate in words: "9.0 % (95 % interval 5.6-13.9 %)".
+std::string estimate_text(const planner::Estimate& e);
+
+// {p, low, high, samples}: an estimate as every command's JSON reports it.
+nlohmann::ordered_json estimate_json(const planner::Estimate& e);
+// {pot (pot problems only), position, both}, each an estimate_json.
+nlohmann::ordered_json success_json(const planner::Success& s);
+
 // The stroke as `cueplan solve --json` reports a shot: shot {speed, aim_deg, topspin_k,
 // sidespin_k}, tip_offset, stroke, outcome, final_position, miss_distance (null unless at
 // rest), success_probability, solves, cushion_hits, route, route_names, family,

@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "cueplan/physics/impact_table.hpp"
+#include "cueplan/planner/planner.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -61,6 +64,12 @@ std::string number(double value, const char* unit) {
   std::string s = fmt::format("{:.6g}", value);
   if (unit) s += std::string(" ") + unit;
   return s;
+}
+
+std::string tip_offset_words(const phys::Shot& shot) {
+  const planner::TipOffset t = planner::tip_offset(shot);
+  return fmt::format("{:.3f} R {} of centre, {:.3f} R {} centre", std::abs(t.right),
+                     t.right < 0.0 ? "left" : "right", std::abs(t.up), t.up < 0.0 ? "below" : "above");
 }
 
 std::string cushions_allowed(const problems::Limits& limits) {

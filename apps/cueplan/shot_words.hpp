@@ -19,6 +19,10 @@ std::string number(double value, const char* unit = nullptr);
 // One line of a text report: the label in a column of 16, then the text.
 void report_line(std::ostream& out, std::string_view label, const std::string& text);
 
+// Where the tip meets the cue ball, as fractions of its radius R, in words:
+// "0.231 R right of centre, 0.100 R below centre".
+std::string tip_offset_words(const physics::Shot& shot);
+
 // The cushion counts a problem allows: "1" or "1 to 3".
 std::string cushions_allowed(const problems::Limits& limits);
 

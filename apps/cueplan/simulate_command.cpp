@@ -7,14 +7,16 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "cueplan/draw/table.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "exit_codes.hpp"
 #include "impact_setup.hpp"
 #include "output_file.hpp"
+#include "planner_flags.hpp"
+#include "shot_report.hpp"
 #include "shot_words.hpp"
 #include "simulate_batch.hpp"
-#include "table_drawing.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -99,7 +101,7 @@ TargetReport target_report(const prob::Problem& problem, const phys::Shot& shot,
 
 void write_text(std::ostream& out, const prob::Problem& problem, const phys::Shot& shot,
                 const phys::SimulationOptions& options, const phys::ShotResult& r,
-                const std::string& svg_file) {
+                const std::string& svg_file, const std::optional<SimulatedSuccess>& success) {
   const auto line = [&](std::string_view label, const std::string& text) {
     report_line(out, label, text);
   };
@@ -138,6 +140,12 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
            cushions_allowed(problem.limits) + ")");
   line("limits", target.limits.empty() ? "the shot lies within the problem's limits"
                                        : "outside the problem's limits: " + target.limits);
+  if (success) {
+    const planner::Success& s = success->success;
+    line("success", estimate_text(s.both) + " of " + std::to_string(s.both.samples) +
+                        " noisy strokes solve the problem (noise: " + noise_text(success->noise) +
+                        "; seed " + std::to_string(success->seed) + ")");
+  }
   line("method", method_text(options, scene));
   if (r.cushion_hits > 0)
     line("cushion speed", "max normal speed " + number(r.max_cushion_normal_speed, "m/s") +
@@ -168,7 +176,7 @@ nlohmann::ordered_json vec(phys::Vec2 v) { return {v.x, v.y}; }
 
 nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::Shot& shot,
                 const phys::SimulationOptions& options, const phys::ShotResult& r,
-                const std::string& svg_file) {
+                const std::string& svg_file, const std::optional<SimulatedSuccess>& success) {
   using nlohmann::ordered_json;
   const phys::Scene& scene = problem.scene;
   const TargetReport target = target_report(problem, shot, r);
@@ -224,6 +232,15 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
   j["reaches_target"] = target.reaches;
   j["within_limits"] = target.limits.empty();
   j["limits_message"] = target.limits;
+  if (success) {
+    j["success"] = success_json(success->success);
+    const planner::NoiseModel& n = success->noise;
+    j["noise"] = {{"scale", n.scale},
+                  {"aim_deg", n.aim_deg},
+                  {"speed", n.speed},
+                  {"tip_offset", n.tip_offset},
+                  {"seed", success->seed}};
+  }
   j["max_cushion_normal_speed"] = r.max_cushion_normal_speed;
   j["rigid_limit_exceeded"] = r.rigid_limit_exceeded;
   j["method"] = phys::to_string(phys::chosen_impact_method(scene, options));
@@ -248,6 +265,8 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
                 {"sidespin_k", "k_S = w_S R / V, > 0 right spin"},
                 {"tolerance", "m"},
                 {"miss_distance", "m"},
+                {"success", "fractions of noisy strokes, 0..1, with 95 % Wilson intervals"},
+                {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"},
                 {"impact_accuracy", "relative to the speed"}};
   return j;
 }
@@ -255,13 +274,10 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
 namespace {
 
 // The title and caption of the drawing: the shot, then what came of it.
-TableDrawing drawing_of(const prob::Problem& problem, const phys::Shot& shot,
-                        const phys::SimulationOptions& options, const phys::ShotResult& r) {
-  TableDrawing d;
-  d.scene = problem.scene;
-  d.cue_ball = problem.cue_ball;
-  d.target = TargetZone{problem.target, problem.tolerance};
-  d.paths.push_back({r.path, r.events, false});
+draw::TableScene drawing_of(const prob::Problem& problem, const phys::Shot& shot,
+                            const phys::SimulationOptions& options, const phys::ShotResult& r) {
+  draw::TableScene d = draw::problem_table(problem);
+  d.balls.front().paths.push_back({r.path, r.events, false});
 
   std::string buf;
   buf = fmt::format("{}: V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g}",
@@ -376,8 +392,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
           ->group(output);
   auto* svg = c.add_option("--svg", args_.svg_file,
                            "Also draw the table, pockets, obstacles, target zone and the ball's "
-                           "path to scale, coloured by sliding and rolling, as an SVG file")
-                  ->type_name("FILE.svg")
+                           "path to scale, coloured by sliding and rolling, as a picture: SVG, "
+                           "PNG or PDF by the file's extension")
+                  ->type_name("FILE.svg|.png|.pdf")
                   ->group(output);
   auto* batch =
       c.add_option("--batch", args_.batch_file,
@@ -388,6 +405,27 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
                    "reaches_target (1/0),status,message. A bad row gets its own error status.")
           ->type_name("FILE.csv")
           ->group(output);
+  const char* noise = "Success under a player's noise";
+  auto* samples =
+      c.add_option("--samples", args_.samples,
+                   "Also estimate the stroke's success probability from N noisy strokes (the "
+                   "planner's noise model), with its 95 % interval, >= 0; 0 skips it")
+          ->type_name("N")
+          ->capture_default_str()
+          ->group(noise);
+  c.add_option("--noise", args_.noise,
+               "Scale of the noise (Gaussian: aim 0.125 deg, speed 0.075 m/s, tip offset 0.5 mm "
+               "each way, times this), >= 0")
+      ->type_name("X")
+      ->capture_default_str()
+      ->needs(samples)
+      ->group(noise);
+  c.add_option("--seed", args_.seed,
+               "Seed of the noisy strokes: the same seed gives the same draws as cueplan solve's")
+      ->type_name("N")
+      ->capture_default_str()
+      ->needs(samples)
+      ->group(noise);
   c.add_option("--threads", args_.threads,
                "Batch: threads to spread the rows over (0: one per core); the output is the "
                "same for any count. Also used to build a table.")
@@ -397,6 +435,7 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       ->group(output);
   batch->excludes(json);
   batch->excludes(svg);
+  batch->excludes(samples);
   for (const char* flag : {"--speed", "--aim", "--topspin-k", "--sidespin-k"})
     batch->excludes(c.get_option(flag));
 
@@ -428,6 +467,10 @@ std::string SimulateCommand::read_options(phys::SimulationOptions* options) cons
   options->max_events = args_.max_events;
   if (args_.threads < 0)
     return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
+  if (args_.samples < 0)
+    return "--samples must not be negative, got " + std::to_string(args_.samples);
+  if (!std::isfinite(args_.noise) || args_.noise < 0.0)
+    return "--noise must be finite and not negative, got " + number(args_.noise);
   return {};
 }
 
@@ -464,7 +507,7 @@ std::string SimulateCommand::read_inputs(Inputs* inputs) const {
     return why;
   }
   if (!args_.svg_file.empty())
-    if (std::string why = check_output_file(args_.svg_file); !why.empty()) return "--svg: " + why;
+    if (std::string why = check_picture_file("--svg", args_.svg_file); !why.empty()) return why;
   inputs->loaded = prob::load_problem(args_.problem_file);
   return inputs->loaded.error;
 }
@@ -500,14 +543,22 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
 
   // The drawing first: if it cannot be written, nothing else is printed.
   if (!args_.svg_file.empty()) {
-    const std::string svg = render_table_svg(drawing_of(problem, shot, options, result));
-    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+    const draw::Picture picture = draw::table_picture(drawing_of(problem, shot, options, result));
+    if (std::string why = write_picture(args_.svg_file, picture); !why.empty())
       return usage("--svg: " + why);
   }
+  std::optional<SimulatedSuccess> success;
+  if (args_.samples > 0) {
+    success.emplace();
+    success->noise.scale = args_.noise;
+    success->seed = args_.seed;
+    success->success = planner::estimate_success(problem, shot, success->noise, args_.samples,
+                                                 args_.seed, options);
+  }
   if (args_.json)
-    out << simulate_json(problem, shot, options, result, args_.svg_file).dump(2) << '\n';
+    out << simulate_json(problem, shot, options, result, args_.svg_file, success).dump(2) << '\n';
   else
-    write_text(out, problem, shot, options, result, args_.svg_file);
+    write_text(out, problem, shot, options, result, args_.svg_file, success);
   const bool outcome = result.status == phys::ShotStatus::rest ||
                        result.status == phys::ShotStatus::pocketed ||
                        result.status == phys::ShotStatus::hit_obstacle;

@@ -1,14 +1,17 @@
 // `cueplan simulate PROBLEM`: one cue-ball shot (or a CSV batch of them) on a problem
 // file's scene through physics::simulate, reported as text, JSON or CSV against the
-// problem's target, and drawn to scale as SVG.
+// problem's target, and drawn to scale (SVG, PNG or PDF).
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "impact_setup.hpp"
 
@@ -40,7 +43,10 @@ struct SimulateArgs {
   bool json = false;
   std::string svg_file;  // empty: no drawing
   std::string batch_file;
-  int threads = 0;  // batch (and table build) threads; 0: one per core
+  int threads = 0;     // batch (and table build) threads; 0: one per core
+  int samples = 0;     // --samples: noisy strokes for the success estimate; 0: none
+  double noise = 1.0;  // --noise: scale of planner::NoiseModel's deviations
+  uint64_t seed = 1;   // --seed: of the noisy strokes
 };
 
 class SimulateCommand {
@@ -81,10 +87,19 @@ class SimulateCommand {
   SimulateArgs args_;
 };
 
+// The success of the stroke under a player's noise (`cueplan simulate --samples N`).
+struct SimulatedSuccess {
+  planner::NoiseModel noise;
+  uint64_t seed = 1;
+  planner::Success success;  // its estimates' samples are N
+};
+
 // What `cueplan simulate --json` prints for one stroke (svg_file: the drawing written, or
-// empty).
+// empty; success: with --samples, reported as `success` {position, both, pot when the
+// problem has one} and `noise`).
 nlohmann::ordered_json simulate_json(const problems::Problem& problem, const physics::Shot& shot,
                                      const physics::SimulationOptions& options,
-                                     const physics::ShotResult& r, const std::string& svg_file);
+                                     const physics::ShotResult& r, const std::string& svg_file,
+                                     const std::optional<SimulatedSuccess>& success = {});
 
 }  // namespace cueplan::cli

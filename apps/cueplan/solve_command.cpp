@@ -2,12 +2,15 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <vector>
 
+#include "cueplan/draw/table.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
@@ -15,7 +18,6 @@
 #include "output_file.hpp"
 #include "shot_report.hpp"
 #include "shot_words.hpp"
-#include "table_drawing.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -30,10 +32,8 @@ constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue st
 
 // Tip offsets as fractions of R, with their direction in words.
 std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) {
-  const plan::TipOffset t = plan::tip_offset(shot);
-  return fmt::format("{:.3f}", std::abs(t.right)) + " R " + (t.right < 0.0 ? "left" : "right") +
-         " of centre, " + fmt::format("{:.3f}", std::abs(t.up)) + " R " + (t.up < 0.0 ? "below" : "above") +
-         " centre (fractions of the ball radius; the spin "
+  return tip_offset_words(shot) +
+         " (fractions of the ball radius; the spin "
          "limit is " +
          fmt::format("{:.3g}", limits.spin_max / kSpinPerTipOffset) + " R)";
 }
@@ -46,11 +46,23 @@ std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) 
          "): " + (inside ? "inside the target zone" : "outside the target zone");
 }
 
-std::string success_text(const plan::PlannerOptions& options, double probability) {
+std::string success_text(const plan::PlannerOptions& options, const plan::Success& success) {
   if (options.robustness_samples == 0) return "not estimated (--samples 0)";
-  return fmt::format("{:.1f} %", 100.0 * probability) + " of " +
-         std::to_string(options.robustness_samples) +
-         " noisy strokes stop in the zone (noise: " + noise_text(options.noise) + ")";
+  const plan::Estimate& e = success.both;
+  std::string text = estimate_text(e) + " of " + std::to_string(e.samples) +
+                     " noisy strokes succeed (noise: " + noise_text(options.noise) + ")";
+  if (e.samples < options.robustness_samples)
+    text += fmt::format("; cut short at {} of {} strokes by the time budget or by the "
+                        "ranking, which stops sampling strokes that are measurably worse",
+                        e.samples, options.robustness_samples);
+  return text;
+}
+
+// "yes" when the stroke meets every condition and some noisy stroke succeeded too;
+// "exact" when it lands only as struck, no noisy stroke having succeeded.
+const char* solves_text(const plan::PlannedShot& p) {
+  if (!p.solves) return "no";
+  return p.success.both.samples > 0 && p.success.both.successes == 0 ? "exact" : "yes";
 }
 
 // ---------------------------------------------------------------------------
@@ -79,7 +91,7 @@ void write_text(std::ostream& out, const prob::Problem& problem,
   line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
                      ", tolerance " + number(problem.tolerance, "m"));
   line("miss distance", miss_text(problem, b));
-  line("success", success_text(options, b.success_probability));
+  line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
   line("family", b.family);
   const std::vector<ConstraintRow> rows = constraints(problem, b, options.enforce_rigid_limit);
@@ -111,24 +123,33 @@ void write_text(std::ostream& out, const prob::Problem& problem,
                                                     " (other families, best first)");
   if (r.alternatives.empty()) return;
   std::string buf;
-  buf = fmt::format("  {:>2} {:>8} {:>10} {:>7} {:>7} {:>10} {:>8}  {:<6} {:<28} {}", "#", "V (m/s)",
-                "aim (deg)", "k_T", "k_S", "miss (mm)", "success", "solves", "route", "stroke");
+  buf = fmt::format("  {:>2} {:>8} {:>10} {:>7} {:>7} {:>10} {:>15}  {:<6} {:<28} {}", "#",
+                    "V (m/s)", "aim (deg)", "k_T", "k_S", "miss (mm)", "success (95 %)", "solves",
+                    "route", "stroke");
   out << buf << '\n';
   for (size_t i = 0; i < r.alternatives.size(); ++i) {
     const plan::PlannedShot& a = r.alternatives[i];
     const std::string miss =
         std::isfinite(a.miss_distance) ? fmt::format("{:.3g}", 1000.0 * a.miss_distance) : "-";
+    const plan::Estimate& e = a.success.both;
     const std::string success =
-        options.robustness_samples == 0 ? "-" : fmt::format("{:.1f} %", 100.0 * a.success_probability);
+        e.samples == 0 ? "-"
+                       : fmt::format("{:.1f} % ({:.0f}-{:.0f})", 100.0 * e.p, 100.0 * e.low,
+                                     100.0 * e.high);
     std::string route = route_text(problem.scene, a.route);
     if (a.outcome != phys::ShotStatus::rest)
       route += std::string(", ") + phys::to_string(a.outcome);
-    buf = fmt::format("  {:2} {:8.4f} {:10.3f} {:7.3f} {:7.3f} {:>10} {:>8}  {:<6} {:<28} {}", i + 1,
-                  a.shot.speed, a.shot.aim_deg, a.shot.topspin_k, a.shot.sidespin_k, miss.c_str(),
-                  success.c_str(), a.solves ? "yes" : "no", route.c_str(),
-                  plan::describe_stroke(a.shot).c_str());
+    buf = fmt::format("  {:2} {:8.4f} {:10.3f} {:7.3f} {:7.3f} {:>10} {:>15}  {:<6} {:<28} {}",
+                      i + 1, a.shot.speed, a.shot.aim_deg, a.shot.topspin_k, a.shot.sidespin_k,
+                      miss, success, solves_text(a), route, plan::describe_stroke(a.shot));
     out << buf << '\n';
   }
+  for (const plan::PlannedShot& a : r.alternatives)
+    if (std::string(solves_text(a)) == "exact") {
+      out << "  (solves exact: the stroke lands as given, but none of its noisy strokes "
+             "succeeded)\n";
+      break;
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -184,7 +205,10 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
                 {"tip_offset", "d / R, the cue tip's offset from centre (k = 2.5 d / R)"},
                 {"final_position", "m"},
                 {"miss_distance", "m"},
-                {"success_probability", "fraction of noisy strokes, 0..1"},
+                {"success_probability", "fraction of noisy strokes, 0..1 (= success.both.p)"},
+                {"success",
+                 "fractions of noisy strokes, 0..1: p with its 95 % Wilson interval [low, high] "
+                 "over `samples` strokes; position is given the pot (all strokes without one)"},
                 {"time_s", "s"},
                 {"max_cushion_normal_speed", "m/s"},
                 {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"}};
@@ -194,9 +218,9 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
 namespace {
 
 // ---------------------------------------------------------------------------
-// SVG: the best path in full, the alternatives faint.
+// The drawing: the best path in full, the alternatives faint.
 
-DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
+draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
                   const phys::SimulationOptions& search, bool faint) {
   // Simulated as the reported outcome was: with the method that gave it.
   phys::SimulationOptions options = search;
@@ -210,16 +234,13 @@ DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
   return {r.path, r.events, faint};
 }
 
-TableDrawing drawing_of(const prob::Problem& problem, const plan::PlannerOptions& options,
-                        const plan::PlanResult& r) {
+draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOptions& options,
+                            const plan::PlanResult& r) {
   const plan::PlannedShot& b = r.best;
-  TableDrawing d;
-  d.scene = problem.scene;
-  d.cue_ball = problem.cue_ball;
-  d.target = TargetZone{problem.target, problem.tolerance};
+  draw::TableScene d = draw::problem_table(problem);
   for (const plan::PlannedShot& a : r.alternatives)
-    d.paths.push_back(path_of(problem, a, options.simulation, true));
-  d.paths.push_back(path_of(problem, b, options.simulation, false));
+    d.balls.front().paths.push_back(path_of(problem, a, options.simulation, true));
+  d.balls.front().paths.push_back(path_of(problem, b, options.simulation, false));
   if (!r.alternatives.empty())
     d.faint_legend = std::to_string(r.alternatives.size()) +
                      (r.alternatives.size() == 1 ? " alternative stroke" : " alternative strokes");
@@ -228,14 +249,13 @@ TableDrawing drawing_of(const prob::Problem& problem, const plan::PlannerOptions
   buf = fmt::format("{}: {}, aim {:.4g}\u00b0", problem.name.c_str(),
                 plan::describe_stroke(b.shot).c_str(), b.shot.aim_deg);
   d.title = buf;
-  buf = fmt::format("{}. V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g} (tip {:.3f} R right, "
-                "{:.3f} R up).",
+  buf = fmt::format("{}. V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g} (tip {}).",
                 r.status == plan::PlanStatus::solved ? "Solved"
                 : r.status == plan::PlanStatus::no_solution_found
                     ? "No solution found; the nearest stroke"
                     : "Budget exhausted; the best stroke",
                 b.shot.speed, b.shot.aim_deg, b.shot.topspin_k, b.shot.sidespin_k,
-                plan::tip_offset(b.shot).right, plan::tip_offset(b.shot).up);
+                tip_offset_words(b.shot).c_str());
   d.caption.push_back(buf);
   std::string outcome;
   if (std::isfinite(b.miss_distance)) {
@@ -283,12 +303,13 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   c.add_flag("--json", args_.json,
              "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
              "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
-             "evaluations, time_s, alternatives (same shape), constraints, ...")
+             "success {position, both: {p, low, high, samples}}, evaluations, time_s, "
+             "alternatives (same shape), constraints, ...")
       ->group(output);
   c.add_option("--svg", args_.svg_file,
-               "Also draw the plan as an SVG file: the table, the target zone, the best stroke's "
-               "path and the alternatives' paths dimmed")
-      ->type_name("FILE.svg")
+               "Also draw the plan: the table, the target zone, the best stroke's path and the "
+               "alternatives' paths dimmed; SVG, PNG or PDF by the file's extension")
+      ->type_name("FILE.svg|.png|.pdf")
       ->group(output);
 
   c.footer(
@@ -316,7 +337,7 @@ std::string SolveCommand::read_inputs(Inputs* inputs) const {
       !why.empty())
     return why;
   if (!args_.svg_file.empty())
-    if (std::string why = check_output_file(args_.svg_file); !why.empty()) return "--svg: " + why;
+    if (std::string why = check_picture_file("--svg", args_.svg_file); !why.empty()) return why;
   inputs->loaded = prob::load_problem(args_.problem_file);
   return inputs->loaded.error;
 }
@@ -328,6 +349,7 @@ int SolveCommand::validate(std::ostream& err) const {
 }
 
 int SolveCommand::run(std::ostream& out, std::ostream& err) const {
+  const auto started = std::chrono::steady_clock::now();
   const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
 
   Inputs inputs;
@@ -337,21 +359,35 @@ int SolveCommand::run(std::ostream& out, std::ostream& err) const {
   const prob::Problem& problem = *inputs.loaded.problem;
 
   phys::ImpactTable table;
+  bool built = false;  // a first build of the table is not charged to --max-time
   if (simulation.impact_method == phys::ImpactMethod::table) {
-    const int code =
-        prepare_impact_table(kCommandName, problem.scene, args_.impact.table_cache, args_.threads,
-                             command_->count("--accuracy") > 0, &table, &simulation, err);
+    const int code = prepare_impact_table(kCommandName, problem.scene, args_.impact.table_cache,
+                                          args_.threads, command_->count("--accuracy") > 0, &table,
+                                          &simulation, err, &built);
     if (code != kExitOk) return code;
     options.simulation = simulation;
   }
 
-  const plan::PlanResult result = plan::plan(problem, options);
+  // --max-time bounds the whole command: the plan gets what reading the inputs and
+  // loading the table left of it.
+  plan::PlannerOptions budgeted = options;
+  if (!built) {
+    const double spent =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    budgeted.max_time_s = std::max(1e-6, options.max_time_s - spent);
+    if (spent > 0.5 * options.max_time_s)
+      err << kCommandName << ": reading the problem and loading the impact table took "
+          << fmt::format("{:.3g} s of the {:.3g} s --max-time budget; the plan has {:.3g} s",
+                         spent, options.max_time_s, budgeted.max_time_s)
+          << '\n';
+  }
+  const plan::PlanResult result = plan::plan(problem, budgeted);
   if (result.status == plan::PlanStatus::invalid_input) return usage(result.message);
 
   // The drawing first: if it cannot be written, nothing else is printed.
   if (!args_.svg_file.empty()) {
-    const std::string svg = render_table_svg(drawing_of(problem, options, result));
-    if (std::string why = write_file_atomically(args_.svg_file, svg); !why.empty())
+    const draw::Picture picture = draw::table_picture(drawing_of(problem, options, result));
+    if (std::string why = write_picture(args_.svg_file, picture); !why.empty())
       return usage("--svg: " + why);
   }
   if (args_.json)

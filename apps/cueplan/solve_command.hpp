@@ -1,6 +1,6 @@
 // `cueplan solve PROBLEM`: the inverse problem through planner::plan - the stroke
 // (speed, aim, topspin, sidespin) whose cue ball stops on the target - reported in a
-// player's terms as text or JSON, with its distinct alternatives, and drawn as SVG.
+// player's terms as text or JSON, with its distinct alternatives, and drawn (SVG, PNG or PDF).
 #pragma once
 
 #include <iosfwd>

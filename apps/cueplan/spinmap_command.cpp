@@ -5,15 +5,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 
+#include "cueplan/draw/spin_map.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/spin_map.hpp"
@@ -22,7 +21,6 @@
 #include "output_file.hpp"
 #include "cueplan/physics/parallel.hpp"
 #include "shot_words.hpp"
-#include "spin_map_drawing.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -37,16 +35,10 @@ constexpr const char* kCommandName = "cueplan spinmap";
 constexpr double kSpinPerTipOffset = 2.5;  // k = 2.5 d / R (PHYSICS.md, "Cue strike")
 constexpr int kSamplePathsPerSide = 5;     // faint paths: about 5 x 5 spins of the grid
 
-enum class PictureFormat { svg, png };
-
-std::optional<PictureFormat> format_of(const std::string& file) {
-  std::string ext = std::filesystem::path(file).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".svg") return PictureFormat::svg;
-  if (ext == ".png") return PictureFormat::png;
-  return std::nullopt;
-}
+using draw::classify;
+using draw::format_of;
+using draw::SpinCellKind;
+using PictureFormat = draw::Format;
 
 // A progress bar on a terminal's stderr, drawn once the work has taken a moment and
 // redrawn as the fraction grows; nothing at all when stderr is not a terminal.
@@ -264,7 +256,8 @@ ordered_json spinmap_json(const prob::Problem& problem, const plan::SpinMap& map
   j["method"] = phys::to_string(phys::chosen_impact_method(problem.scene, simulation));
   if (!picture_file.empty()) {
     j["out"] = picture_file;
-    j["format"] = format_of(picture_file) == PictureFormat::png ? "png" : "svg";
+    if (const std::optional<PictureFormat> format = format_of(picture_file))
+      j["format"] = draw::to_string(*format);
   }
   j["time_s"] = seconds;
   j["units"] = {{"speed", "m/s"},
@@ -294,10 +287,10 @@ ordered_json spinmap_cells_json(const prob::Problem& problem, const plan::SpinMa
 
 namespace {
 
-
-SpinMapPicture picture_of(const prob::Problem& problem, const plan::SpinMap& map,
-                          const StrokeSource& source, const phys::SimulationOptions& simulation) {
-  SpinMapPicture picture;
+draw::SpinMapScene picture_of(const prob::Problem& problem, const plan::SpinMap& map,
+                              const StrokeSource& source,
+                              const phys::SimulationOptions& simulation) {
+  draw::SpinMapScene picture;
   picture.problem = problem;
   picture.map = map;
   std::string buf;
@@ -319,12 +312,12 @@ SpinMapPicture picture_of(const prob::Problem& problem, const plan::SpinMap& map
   // Faint paths of a few spins, and the planner's stroke in full.
   phys::SimulationOptions paths = simulation;
   paths.record_path = true;
-  for (size_t i : sparse_subset(map, kSamplePathsPerSide)) {
+  for (size_t i : draw::sparse_subset(map, kSamplePathsPerSide)) {
     const plan::SpinMapPoint& p = map.points[i];
     const phys::ShotResult r =
         phys::simulate(problem.scene, problem.cue_ball,
                        {map.speed, map.aim_deg, p.topspin_k, p.sidespin_k}, paths);
-    picture.sample_paths.push_back({r.path, {}, true});
+    picture.sample_paths.push_back({r.path, r.events, true});
   }
   if (source.planned) {
     // As the planner reported its outcome: with the exact method when it verified so.
@@ -336,7 +329,7 @@ SpinMapPicture picture_of(const prob::Problem& problem, const plan::SpinMap& map
     }
     const phys::ShotResult r =
         phys::simulate(problem.scene, problem.cue_ball, source.plan.best.shot, planned);
-    picture.shot_path = DrawnPath{r.path, r.events, false};
+    picture.shot_path = draw::DrawnPath{r.path, r.events, false};
     picture.marked_shot = source.plan.best.shot;
   }
   return picture;
@@ -355,9 +348,9 @@ SpinmapCommand::SpinmapCommand(CLI::App& parent) {
                "Problem file (YAML, problems/README.md): table, cue ball, target, limits")
       ->required()
       ->type_name("FILE.yaml");
-  c.add_option("--out", args_.out_file, "The picture to write: SVG or PNG, by the file's extension")
+  c.add_option("--out", args_.out_file, "The picture to write: SVG, PNG or PDF, by the file's extension")
       ->required()
-      ->type_name("FILE.svg|FILE.png");
+      ->type_name("FILE.svg|.png|.pdf");
 
   const char* stroke = "Stroke";
   c.add_option("--speed", args_.speed,
@@ -413,7 +406,7 @@ std::string SpinmapCommand::read_inputs(Inputs* inputs) const {
   // Flags first, then the output path and the problem: whole-input errors come before
   // any table is built.
   const std::optional<PictureFormat> format = format_of(args_.out_file);
-  if (!format) return "--out must name a .svg or .png file, got '" + args_.out_file + "'";
+  if (!format) return "--out must name a .svg, .png or .pdf file, got '" + args_.out_file + "'";
   inputs->format = *format;
   const bool speed_given = given("--speed");
   inputs->speed_given = speed_given;
@@ -499,16 +492,13 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
     return kExitFailed;
   }
 
-  const SpinMapPicture picture = picture_of(problem, map, source, simulation);
-  std::string bytes;
-  try {
-    bytes =
-        format == PictureFormat::svg ? render_spin_map_svg(picture) : render_spin_map_png(picture);
-  } catch (const std::exception& e) {
-    err << kCommandName << ": cannot draw the picture: " << e.what() << '\n';
+  const draw::Encoded picture =
+      draw::encode(draw::spin_map_picture(picture_of(problem, map, source, simulation)), format);
+  if (!picture.ok()) {
+    err << kCommandName << ": " << picture.error << '\n';
     return kExitFailed;
   }
-  if (std::string why = write_file_atomically(args_.out_file, bytes); !why.empty())
+  if (std::string why = write_file_atomically(args_.out_file, picture.bytes); !why.empty())
     return usage("--out: " + why);
 
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();

@@ -1,6 +1,6 @@
 // `cueplan spinmap PROBLEM --out FILE`: the teaching tool, "what spin lands here". For
 // one speed and aim (given, or the planner's best stroke), planner::spin_map simulates
-// every spin on a grid over the tip-offset disc; the picture (SVG or PNG) shows each
+// every spin on a grid over the tip-offset disc; the picture (SVG, PNG or PDF) shows each
 // spin coloured by how far from the target it stops, the spins that land outlined,
 // and beside it the table with every spin's rest position.
 #pragma once
@@ -25,7 +25,7 @@ namespace cueplan::cli {
 // What the command line asked for, in the flags' units.
 struct SpinmapArgs {
   std::string problem_file;  // PROBLEM, a YAML problem file
-  std::string out_file;      // --out, .svg or .png
+  std::string out_file;      // --out, .svg, .png or .pdf
   double speed = NAN;        // m/s, --speed (with --aim; neither: the planner's)
   double aim_deg = NAN;      // deg from +x, --aim
   int grid = 41;             // points across the disc's diameter

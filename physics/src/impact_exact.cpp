@@ -6,30 +6,22 @@
 // u_y = 0) at the fixed point t = 0, and P_I and the work W become state components:
 //   y = (u_x, o_x, o_y, o_z, p, W),  dy/dt = (du_x, do_x, do_y, do_z, 1, c u_y) / (-du_y).
 //
-// Integrator. Between events the right-hand side is smooth, so steps are taken by
-// Gragg-Bulirsch-Stoer extrapolation of the modified midpoint rule (order up to 16),
-// which reaches tight tolerances in very few steps.
-//
-// Events, each landed on rather than stepped over:
-//   - end of compression: t = 0, a fixed target;
-//   - end of the impact: W = (1 - e^2) W_c (eq. 16b), landed by Newton steps on the
-//     locally quadratic W(t);
-//   - a slip reaching zero: landed by Newton steps on |slip|; the contact then sticks
-//     if the friction that keeps the slip at zero is inside its cone. A slip that is
-//     already small while its contact could stick is closed at once by the friction
-//     impulse that cancels it (close_slip): near zero the slip's direction turns on a
-//     scale of |slip|, so stepping the last stretch costs steps in proportion to how
-//     slowly the slip shrinks, and the impulse lands it to second order instead;
+// Integrator: Gragg-Bulirsch-Stoer extrapolation between events, and the landing on the
+// end of compression, the end of the impact (W = (1 - e^2) W_c, eq. 16b) and a slip
+// reaching zero, as extrapolation.hpp describes. What is the cushion's own:
+//   - a slip reaching zero: the contact then sticks if the friction that keeps the slip
+//     at zero is inside its cone. A slip that is already small while its contact could
+//     stick is closed at once by the friction impulse that cancels it (close_slip): near
+//     zero the slip's direction turns on a scale of |slip|, so stepping the last stretch
+//     costs steps in proportion to how slowly the slip shrinks, and the impulse lands it
+//     to second order instead;
 //   - a stick breaking (the friction needed leaves the cone): bracketed and found by
 //     the Illinois method; the contact then slips against the friction it needed.
-// A slip that passes near zero without reaching it turns through up to half a turn
-// on a scale of its own size; no step turns a slip by more than kMaxTurn, so that the
-// extrapolation's error estimate sees the turn rather than stepping over it.
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
+#include "extrapolation.hpp"
 #include "impact_methods.hpp"
 
 namespace cueplan::physics::detail {
@@ -39,14 +31,7 @@ constexpr int kDim = 6;
 using State = std::array<double, kDim>;
 enum : int { kUx = 0, kOx, kOy, kOz, kP, kW };
 
-constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
-constexpr int kMaxColumns = 8;  // midpoint runs of 2, 4, ..., 16 substeps
-constexpr double kMaxTurn = 0.5;  // rad: the most a step may turn a slip (see above)
-
-struct ContactSlip {
-  double x = 0.0, y = 0.0;
-  double magnitude() const { return std::hypot(x, y); }
-};
+using ContactSlip = PlanarSlip;
 
 class ExactIntegrator {
  public:
@@ -58,24 +43,38 @@ class ExactIntegrator {
         max_steps_(max_steps),
         trace_(trace),
         out_(out),
-        trace_from_(trace ? trace->size() : 0) {
+        trace_from_(trace ? trace->size() : 0),
+        stepper_(tolerance) {
     const Scaled& q = impact.incoming;
     t_ = -q.uy;
     y_ = {q.ux, q.ox, q.oy, q.oz, 0.0, 0.0};
-    // Event thresholds sit well above the integration noise (about tol per step)
-    // and well below what would change the outcome at the tolerance.
-    zero_slip_ = 100.0 * tol_;
-    young_slip_ = 1e5 * tol_;
-    // Closing a slip of size s costs O(s^2) (close_slip); 1e4 tol at tight
-    // tolerances, never above 1e-6 nor below the landing threshold.
-    close_slip_ = std::max(zero_slip_, std::min(1e4 * tol_, 1e-6));
-    landing_ = std::max(1e-3 * tol_, 1e-15);
-    tiny_ = 1e-3 * tol_;
+    const EventThresholds events = EventThresholds::for_tolerance(tol_);
+    zero_slip_ = events.zero_slip;
+    young_slip_ = events.young_slip;
+    close_slip_ = events.close_slip;  // see close_slip
+    landing_ = events.landing;
+    tiny_ = events.tiny;
   }
 
   void run();
 
  private:
+  // What becomes of one step, from its plan to its events.
+  enum class Target { none, compression_end, impact_end, slip_zero_i, slip_zero_c };
+  struct Step : PlannedStep<kDim, Target> {
+    bool moving_i = false, moving_c = false;  // slipping away from zero at its start
+    bool broke = false;                       // a stick stopped holding inside it
+  };
+
+  // The stages of run(), in order.
+  void start();
+  bool plan_step(Step* s);
+  bool take_step(Step* s);
+  void land_stick_break(Step* s);
+  void advance(const Step& s);
+  bool resolve_events(const Step& s);
+  void finish();
+
   Scaled scaled(double t, const State& y) const { return {y[kUx], -t, y[kOx], y[kOy], y[kOz]}; }
 
   // Friction at (t, y) for modes m. A slip growing from zero (young) has no direction
@@ -114,12 +113,11 @@ class ExactIntegrator {
     dy[kW] = -g_.c * t * dp_dt;  // c u_y dp/dt with u_y = -t
   }
 
-  struct StepReport {
-    int column = 0;       // the column the step was accepted at
-    double next_h = 0.0;  // suggested size of the next step (or of the retry)
-  };
   bool extrapolate(double t, const State& y, const State& f0, double h, State& result,
-                   StepReport* report);
+                   StepReport* report) {
+    return stepper_.step([this](double s, const State& z, State& dz) { rhs(s, z, dz); }, t, y, f0,
+                         h, result, report);
+  }
   void settle_modes(bool force_slip_i, bool force_slip_c);
   double stick_margin(double t, const State& y) const;
   bool locate_stick_break(double h, State& result, double* h_root);
@@ -144,6 +142,7 @@ class ExactIntegrator {
   std::vector<TraceSample>* trace_;
   ScaledOutcome* out_;
   size_t trace_from_;  // where this impact's samples start in trace_
+  Extrapolator<kDim> stepper_;
 
   double t_ = 0.0;
   State y_{};
@@ -156,102 +155,18 @@ class ExactIntegrator {
   double close_slip_ = 0.0;  // a slip this small is closed when its contact can stick
   double landing_ = 0.0;    // an event this close in t has been reached
   int steps_ = 0;
-  int target_column_ = 4;  // column at which steps are meant to converge
   // Fraction of the predicted distance to a slip zero that a landing step covers:
   // 1 until a landing step fails to converge at the zero (where the slip direction
   // is not smooth), then 0.9, so the zero is approached ten times closer per step.
   double approach_ = 1.0;
   int mode_changes_ = 0;
-};
+  static constexpr int kMaxModeChanges = 8 * kMaxTransitions;
 
-// One extrapolated step of size h from (t, y); f0 = f(t, y). Columns are computed up
-// to one past the target column; the step is accepted at the first column whose
-// error estimate meets the tolerance. Order and next step size follow the usual
-// work-per-unit-step rule of extrapolation codes (Hairer & Wanner's ODEX): the
-// column that would cover the most ground per evaluation becomes the next target.
-bool ExactIntegrator::extrapolate(double t, const State& y, const State& f0, double h,
-                                  State& result, StepReport* report) {
-  // Cumulative right-hand side calls to complete column k (substeps 2(k+1)), with f0.
-  static constexpr std::array<double, kMaxColumns> kWork = {2, 5, 10, 17, 26, 37, 50, 65};
-  const double length = std::abs(h);
-  const int last = std::min(target_column_ + 1, kMaxColumns - 1);
-  // row[j] holds T(k, j) of the current row k; it is updated in place.
-  std::array<State, kMaxColumns> row;
-  std::array<double, kMaxColumns> err_of{};
-  auto substeps = [](int k) { return 2.0 * (k + 1); };
-  // Step size that would let column k converge, from its error estimate.
-  auto h_opt = [&](int k) {
-    return length * 0.94 * std::pow(0.65 * tol_ / std::max(err_of[k], 1e-300), 1.0 / (2 * k + 1));
-  };
-  for (int k = 0; k <= last; ++k) {
-    const int n = 2 * (k + 1);
-    const double hs = h / n;
-    // Modified midpoint rule with n substeps.
-    State z0 = y, z1, fz;
-    for (int i = 0; i < kDim; ++i) z1[i] = y[i] + hs * f0[i];
-    for (int m = 1; m < n; ++m) {
-      rhs(t + m * hs, z1, fz);
-      for (int i = 0; i < kDim; ++i) {
-        const double z2 = z0[i] + 2.0 * hs * fz[i];
-        z0[i] = z1[i];
-        z1[i] = z2;
-      }
-    }
-    // Richardson extrapolation in h^2 (Aitken-Neville), in place.
-    State above = row[0];  // T(k-1, j-1) as the sweep moves right
-    row[0] = z1;
-    for (int j = 1; j <= k; ++j) {
-      const double ratio = static_cast<double>(n) / (2 * (k - j + 1));
-      const double denom = ratio * ratio - 1.0;
-      const State next_above = row[j];
-      for (int i = 0; i < kDim; ++i) row[j][i] = row[j - 1][i] + (row[j - 1][i] - above[i]) / denom;
-      above = next_above;
-    }
-    if (k >= 1) {
-      double err = 0.0, size = 1.0;
-      for (int i = 0; i < kDim; ++i) {
-        err = std::max(err, std::abs(row[k][i] - row[k - 1][i]));
-        size = std::max(size, std::abs(row[k][i]));
-      }
-      if (!std::isfinite(err)) {
-        report->next_h = 0.25 * length;
-        return false;
-      }
-      err_of[k] = err;
-      // Rounding bounds what the estimate can show: never ask for less.
-      const double tol = std::max(tol_, 4e-16 * size);
-      if (err <= tol) {
-        result = row[k];
-        report->column = k;
-        int next = k;
-        if (k < target_column_) {
-          // Converged sooner than planned: the step could have been longer.
-          report->next_h = std::max(h_opt(k), 2.0 * length);
-          return true;
-        }
-        if (k >= 2 && kWork[k - 1] / h_opt(k - 1) < 0.9 * kWork[k] / h_opt(k)) {
-          next = k - 1;
-        } else if (k == target_column_ && k + 1 < kMaxColumns - 1 &&
-                   kWork[k] / h_opt(k) < 0.9 * kWork[k - 1] / h_opt(k - 1)) {
-          next = k + 1;
-        }
-        report->next_h = next == k + 1 ? h_opt(k) * kWork[k + 1] / kWork[k] : h_opt(next);
-        target_column_ = std::clamp(next, 2, kMaxColumns - 2);
-        return true;
-      }
-      // Give up early when the error cannot plausibly fall to the tolerance by the
-      // last column: one more column gains about (n_{k+1} / n_0)^2.
-      if (k == target_column_ && err > tol * std::pow(substeps(k + 1) / substeps(0), 2)) {
-        report->next_h = std::clamp(h_opt(k), 0.05 * length, 0.7 * length);
-        if (k >= 2 && kWork[k - 1] / h_opt(k - 1) < kWork[k] / h_opt(k))
-          target_column_ = std::max(2, k - 1);
-        return false;
-      }
-    }
-  }
-  report->next_h = std::clamp(h_opt(last), 0.05 * length, 0.7 * length);
-  return false;
-}
+  bool compressing_ = true;
+  double work_end_ = 0.0;       // W at the end of the impact, once compression has ended
+  double h_ = 0.0;              // planned size of the next step
+  double trace_cap_ = INFINITY;  // the longest step, so that a trace has enough samples
+};
 
 // Friction margin of the sticking contacts at (t, y): the smaller of the two, or +inf.
 double ExactIntegrator::stick_margin(double t, const State& y) const {
@@ -415,7 +330,31 @@ bool ExactIntegrator::locate_stick_break(double h, State& result, double* h_root
   return true;
 }
 
+// The impact, stage by stage:
+//   start             the contacts' modes at first contact, the first trace sample;
+//   then step by step until the impact ends -
+//   plan_step         the adaptive size, cut to land on the nearest predicted event;
+//   take_step         one extrapolated step; one that failed to converge, or stepped a
+//                     slip through zero, is retried shorter;
+//   land_stick_break  a stick that stopped holding inside the step ends it where it breaks;
+//   advance           to the step's end, recorded, and the next step's size;
+//   resolve_events    new modes where a stick broke or a slip reached zero, small slips
+//                     closed, the end of compression noted;
+//   finish            the outgoing state, the trace kept monotone, the status.
 void ExactIntegrator::run() {
+  start();
+  while (steps_ < max_steps_) {
+    Step s;
+    if (!plan_step(&s)) break;  // the impact has ended
+    if (!take_step(&s)) continue;
+    land_stick_break(&s);
+    advance(s);
+    if (!resolve_events(s)) break;  // more mode changes than any impact needs
+  }
+  finish();
+}
+
+void ExactIntegrator::start() {
   const double t_start = t_;
   out_->cushion_slipping_at_start = true;
   out_->table_slipping_at_start = true;
@@ -425,167 +364,143 @@ void ExactIntegrator::run() {
   out_->table_slipping_at_start = !modes_.stick_c;
   record();
 
-  const double trace_cap = trace_ ? -t_start / 64.0 : INFINITY;
-  bool compressing = true;
-  double work_end = 0.0;
-  double h = 0.4 * -t_start;  // first guess; the extrapolation adapts it at once
-  const int max_mode_changes = 8 * kMaxTransitions;
+  trace_cap_ = trace_ ? -t_start / 64.0 : INFINITY;
+  compressing_ = true;
+  work_end_ = 0.0;
+  h_ = 0.4 * -t_start;  // first guess; the extrapolation adapts it at once
+}
 
-  while (steps_ < max_steps_) {
-    State f0;
-    rhs(t_, y_, f0);
-
-    // The step: adaptive size, cut to land on the nearest predicted event.
-    enum class Target { none, compression_end, impact_end, slip_zero_i, slip_zero_c };
-    Target target = Target::none;
-    double step = std::min(h, trace_cap);
-    if (compressing) {
-      if (-t_ <= step) {
-        step = -t_;
-        target = Target::compression_end;
-      }
-    } else {
-      // W(t) is locally W + W' s + W'' s^2 / 2 with W' = -c t q, W'' = -c q,
-      // q = dp/dt; solve for W = work_end.
-      const double q = f0[kP];
-      const double dw = y_[kW] - work_end;
-      const double disc = t_ * t_ + 2.0 * dw / (g_.c * q);
-      const double land = disc > 0.0 ? -t_ + std::sqrt(disc) : -t_;
-      // Landed: within landing_ in t, or with the work left below W's own rounding
-      // (near W = W_end one ulp of W can span more than landing_ in t).
-      if (std::abs(land) <= landing_ ||
-          std::abs(dw) <= 4.0 * kEpsilon * std::max(std::abs(y_[kW]), std::abs(work_end)))
-        break;
-      if (land <= step) {
-        if (land >= -step) {
-          step = land;
-          target = Target::impact_end;
-        } else {
-          step = -step;  // overshot by more than a step: walk back a step at a time
-        }
-      }
+// The step: adaptive size, cut to land on the nearest predicted event. False when the
+// end of the impact has been reached.
+bool ExactIntegrator::plan_step(Step* s) {
+  rhs(t_, y_, s->f0);
+  const State& f0 = s->f0;
+  s->target = Target::none;
+  s->size = std::min(h_, trace_cap_);
+  if (compressing_) {
+    if (-t_ <= s->size) {
+      s->size = -t_;
+      s->target = Target::compression_end;
     }
-    // Slips heading for zero: Newton prediction of when they get there.
-    auto predict = [&](bool sticking, bool young, ContactSlip sl, double dsx, double dsy,
-                       Target which) {
-      if (sticking) return;
-      const double mag = sl.magnitude();
-      if (mag <= zero_slip_) return;
-      const double rate = (sl.x * dsx + sl.y * dsy) / mag;
-      if (rate < 0.0) {
-        const double when = approach_ * mag / -rate;
-        if (when < step) {
-          step = when;
-          target = which;
-        }
-      }
-      // A slip passing near zero turns through up to half a turn on a scale of its
-      // size: no step turns it by more than kMaxTurn (a young slip's direction is
-      // not its own and turns slowly).
-      const double sideways = std::abs(sl.x * dsy - sl.y * dsx) / mag;
-      if (!young && step > 0.0 && sideways * step > kMaxTurn * mag) {
-        step = kMaxTurn * mag / sideways;
-        target = Target::none;
-      }
-    };
-    {
-      // Slip rates per unit t from the state rates (eqs. 12, 13).
-      const double dux = f0[kUx], duy = -1.0, dox = f0[kOx], doy = f0[kOy], doz = f0[kOz];
-      const ContactSlip si = slip_i(t_, y_), sc = slip_c(t_, y_);
-      predict(modes_.stick_i, young_i_, si, dux + doy * g_.s - doz * g_.c, -duy * g_.s + dox,
-              Target::slip_zero_i);
-      predict(modes_.stick_c, young_c_, sc, dux - doy, duy + dox, Target::slip_zero_c);
-    }
-
-    State next;
-    StepReport report;
-    ++steps_;
-    if (!extrapolate(t_, y_, f0, step, next, &report)) {
-      h = report.next_h;
-      if (target == Target::slip_zero_i || target == Target::slip_zero_c) approach_ = 0.9;
-      continue;
-    }
-
-    // A slip that reversed has been stepped through: take a shorter step, so that
-    // it is landed on instead.
-    const ContactSlip si0 = slip_i(t_, y_), sc0 = slip_c(t_, y_);
-    const ContactSlip si1 = slip_i(t_ + step, next), sc1 = slip_c(t_ + step, next);
-    const bool moving_i = !modes_.stick_i && si0.magnitude() > zero_slip_;
-    const bool moving_c = !modes_.stick_c && sc0.magnitude() > zero_slip_;
-    // (Ending within zero_slip_ of zero is a landing, whatever the rounding sign.)
-    if ((moving_i && si1.magnitude() > zero_slip_ && si0.x * si1.x + si0.y * si1.y < 0.0) ||
-        (moving_c && sc1.magnitude() > zero_slip_ && sc0.x * sc1.x + sc0.y * sc1.y < 0.0)) {
-      h = 0.5 * std::abs(step);
-      continue;
-    }
-
-    // A stick that stopped holding inside the step: land where it breaks, or stay
-    // put when it breaks at once.
-    bool broke = false;
-    if ((modes_.stick_i || modes_.stick_c) && stick_margin(t_ + step, next) < 0.0) {
-      double h_root = 0.0;
-      broke = true;
-      if (locate_stick_break(step, next, &h_root)) {
-        step = h_root;
-        target = Target::none;
-        // A landing step can overshoot the end of the impact; a stick that breaks
-        // only beyond the end held throughout (the landing then steps back).
-        if (!compressing && next[kW] < work_end) broke = false;
-      } else {
-        step = 0.0;
-        next = y_;
-        target = Target::none;
-      }
-    }
-
-    t_ = (target == Target::compression_end) ? 0.0 : t_ + step;
-    y_ = next;
-    record();
-    if (young_i_ && slip_i(t_, y_).magnitude() > young_slip_) young_i_ = false;
-    if (young_c_ && slip_c(t_, y_).magnitude() > young_slip_) young_c_ = false;
-
-    // Next adaptive step: as the extrapolation suggests, but after a step cut short
-    // by an event no shorter than the size that was planned.
-    // (A stick that broke at once leaves the point unmoved: keep the planned size.)
-    if (step != 0.0)
-      h = (target == Target::none) ? std::min(report.next_h, 10.0 * std::abs(step))
-                                   : std::max(h, std::min(report.next_h, 10.0 * std::abs(step)));
-
-    if (broke) {
-      // The contact nearest its cone's edge is the one whose stick breaks.
-      const Friction f = friction(t_, y_, modes_);
-      const double mi = modes_.stick_i ? stick_margin_i(g_, f) : INFINITY;
-      const double mc = modes_.stick_c ? stick_margin_c(g_, f) : INFINITY;
-      settle_modes(mi <= mc, mc < mi);
-    }
-    // A small slip at a contact that could stick is closed now (slips grown from
-    // zero are left to grow: their stick has just failed). Not on the end of
-    // compression, which the impulse would move.
-    bool closed = false;
-    const bool may_close = target != Target::compression_end;
-    if (may_close && !modes_.stick_i && !young_i_ && slip_i(t_, y_).magnitude() <= close_slip_ &&
-        stick_would_hold(Contact::cushion))
-      closed = close_slip(Contact::cushion, compressing);
-    if (may_close && !modes_.stick_c && !young_c_ && slip_c(t_, y_).magnitude() <= close_slip_ &&
-        stick_would_hold(Contact::table))
-      closed = close_slip(Contact::table, compressing) || closed;
-    if (closed) record();
-    // Every slip that reached zero in this step, targeted or not (two events can
-    // coincide: while the cushion sticks, the table slip vanishes exactly at the
-    // end of compression).
-    if (closed || (moving_i && slip_i(t_, y_).magnitude() <= zero_slip_) ||
-        (moving_c && slip_c(t_, y_).magnitude() <= zero_slip_))
-      settle_modes(false, false);
-    if (mode_changes_ > max_mode_changes) break;
-
-    if (compressing && target == Target::compression_end) {
-      compressing = false;
-      out_->impulse_compression = y_[kP];
-      out_->work_compression = y_[kW];
-      work_end = (1.0 - e_ * e_) * y_[kW];
-    }
+  } else {
+    // W(t) is locally quadratic with dW/dt = -c t q, q = dp/dt.
+    const double q = f0[kP];
+    const double dw = y_[kW] - work_end_;
+    const double land = distance_to_work_end(t_, dw, g_.c * q);
+    if (work_end_reached(land, landing_, y_[kW], dw, work_end_)) return false;
+    if (aim_at_work_end(land, &s->size) == EndStep::lands) s->target = Target::impact_end;
   }
+  // Slips heading for zero: Newton prediction of when they get there.
+  auto predict = [&](bool sticking, bool young, ContactSlip sl, double dsx, double dsy,
+                     Target which) {
+    if (sticking || sl.magnitude() <= zero_slip_) return;
+    switch (limit_step_by_slip(sl, dsx, dsy, approach_, young, &s->size)) {
+      case SlipLimit::lands: s->target = which; break;
+      case SlipLimit::turns: s->target = Target::none; break;
+      case SlipLimit::none: break;
+    }
+  };
+  {
+    // Slip rates per unit t from the state rates (eqs. 12, 13).
+    const double dux = f0[kUx], duy = -1.0, dox = f0[kOx], doy = f0[kOy], doz = f0[kOz];
+    const ContactSlip si = slip_i(t_, y_), sc = slip_c(t_, y_);
+    predict(modes_.stick_i, young_i_, si, dux + doy * g_.s - doz * g_.c, -duy * g_.s + dox,
+            Target::slip_zero_i);
+    predict(modes_.stick_c, young_c_, sc, dux - doy, duy + dox, Target::slip_zero_c);
+  }
+  return true;
+}
 
+// One extrapolated step. False when it must be retried (h_ says how long): it did not
+// converge, or it reversed a slip - stepped through its zero instead of landing on it.
+bool ExactIntegrator::take_step(Step* s) {
+  ++steps_;
+  if (!extrapolate(t_, y_, s->f0, s->size, s->next, &s->report)) {
+    h_ = s->report.next_h;
+    if (s->target == Target::slip_zero_i || s->target == Target::slip_zero_c) approach_ = 0.9;
+    return false;
+  }
+  const ContactSlip si0 = slip_i(t_, y_), sc0 = slip_c(t_, y_);
+  const ContactSlip si1 = slip_i(t_ + s->size, s->next), sc1 = slip_c(t_ + s->size, s->next);
+  s->moving_i = !modes_.stick_i && si0.magnitude() > zero_slip_;
+  s->moving_c = !modes_.stick_c && sc0.magnitude() > zero_slip_;
+  if ((s->moving_i && stepped_through(si0, si1, zero_slip_)) ||
+      (s->moving_c && stepped_through(sc0, sc1, zero_slip_))) {
+    h_ = 0.5 * std::abs(s->size);
+    return false;
+  }
+  return true;
+}
+
+// A stick that stopped holding inside the step: land where it breaks, or stay put when
+// it breaks at once.
+void ExactIntegrator::land_stick_break(Step* s) {
+  if (!(modes_.stick_i || modes_.stick_c) || !(stick_margin(t_ + s->size, s->next) < 0.0)) return;
+  double h_root = 0.0;
+  s->broke = true;
+  if (locate_stick_break(s->size, s->next, &h_root)) {
+    s->size = h_root;
+    s->target = Target::none;
+    // A landing step can overshoot the end of the impact; a stick that breaks
+    // only beyond the end held throughout (the landing then steps back).
+    if (!compressing_ && s->next[kW] < work_end_) s->broke = false;
+  } else {
+    s->size = 0.0;
+    s->next = y_;
+    s->target = Target::none;
+  }
+}
+
+void ExactIntegrator::advance(const Step& s) {
+  t_ = (s.target == Target::compression_end) ? 0.0 : t_ + s.size;
+  y_ = s.next;
+  record();
+  if (young_i_ && slip_i(t_, y_).magnitude() > young_slip_) young_i_ = false;
+  if (young_c_ && slip_c(t_, y_).magnitude() > young_slip_) young_c_ = false;
+  // (A stick that broke at once leaves the point unmoved: keep the planned size.)
+  if (s.size != 0.0) h_ = next_step_size(h_, s.report.next_h, s.size, s.target != Target::none);
+}
+
+// Modes after the step's events. False when the modes changed more often than any
+// impact needs (a chattering stick: the integration stops with step_limit).
+bool ExactIntegrator::resolve_events(const Step& s) {
+  if (s.broke) {
+    // The contact nearest its cone's edge is the one whose stick breaks.
+    const Friction f = friction(t_, y_, modes_);
+    const double mi = modes_.stick_i ? stick_margin_i(g_, f) : INFINITY;
+    const double mc = modes_.stick_c ? stick_margin_c(g_, f) : INFINITY;
+    settle_modes(mi <= mc, mc < mi);
+  }
+  // A small slip at a contact that could stick is closed now (slips grown from
+  // zero are left to grow: their stick has just failed). Not on the end of
+  // compression, which the impulse would move.
+  bool closed = false;
+  const bool may_close = s.target != Target::compression_end;
+  if (may_close && !modes_.stick_i && !young_i_ && slip_i(t_, y_).magnitude() <= close_slip_ &&
+      stick_would_hold(Contact::cushion))
+    closed = close_slip(Contact::cushion, compressing_);
+  if (may_close && !modes_.stick_c && !young_c_ && slip_c(t_, y_).magnitude() <= close_slip_ &&
+      stick_would_hold(Contact::table))
+    closed = close_slip(Contact::table, compressing_) || closed;
+  if (closed) record();
+  // Every slip that reached zero in this step, targeted or not (two events can
+  // coincide: while the cushion sticks, the table slip vanishes exactly at the
+  // end of compression).
+  if (closed || (s.moving_i && slip_i(t_, y_).magnitude() <= zero_slip_) ||
+      (s.moving_c && slip_c(t_, y_).magnitude() <= zero_slip_))
+    settle_modes(false, false);
+  if (mode_changes_ > kMaxModeChanges) return false;
+
+  if (compressing_ && s.target == Target::compression_end) {
+    compressing_ = false;
+    out_->impulse_compression = y_[kP];
+    out_->work_compression = y_[kW];
+    work_end_ = (1.0 - e_ * e_) * y_[kW];
+  }
+  return true;
+}
+
+void ExactIntegrator::finish() {
   // The landing on the end of the impact may have stepped past it and back: keep
   // the history monotone in P_I.
   if (trace_) {
@@ -599,7 +514,7 @@ void ExactIntegrator::run() {
   out_->outgoing = scaled(t_, y_);
   out_->impulse_total = y_[kP];
   out_->work_total = y_[kW];
-  if (steps_ >= max_steps_ || mode_changes_ > max_mode_changes || compressing) {
+  if (steps_ >= max_steps_ || mode_changes_ > kMaxModeChanges || compressing_) {
     out_->status = ImpactStatus::step_limit;
     out_->failure = "exact integrator reached its step bound before the impact ended";
   }

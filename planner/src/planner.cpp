@@ -5,14 +5,23 @@
 //   2. global   - NLopt's global method over the unit cube of strokes, remembering the
 //                 best stroke of every family (route and spin) it meets;
 //   3. polish   - the local method from the best stroke of each of the best families,
-//                 in parallel, each start on its own seeded stream; while nothing is
-//                 solved and the budget allows, polishes still improving are continued
-//                 and, once all have converged, the next families are started;
+//                 in parallel, each start on its own seeded stream; while the budget
+//                 allows, polishes still improving are continued and, once all have
+//                 converged, the next families are started;
 //   4. verify   - with the impact table, the polished strokes are simulated again
 //                 with the exact method (and polished with it if they moved out);
-//   5. rank     - one shot per family, solved first, by success probability;
-//   6. robust   - (--robust) each solved shot polished for its success probability;
-//   7. report   - status and a sentence a coach can read.
+//   5. simplify - each solved shot with side is tried again with its side removed and
+//                 halved, re-polished with that side held when it no longer lands;
+//   6. rank     - the success of every solved shot on the same noise draws; a side
+//                 variant the samples cannot tell from its parent replaces it; then the
+//                 coach's order (ranking.hpp) and one shot per family;
+//   7. robust   - (--robust) each solved shot polished for its success probability;
+//   8. report   - status and a sentence a coach can read.
+//
+// One deadline bounds every stage; the search (global and polish) ends by
+// kSearchTimeShare of it and the exact verification and side variants by
+// kRefineTimeShare, so that the Monte Carlo has time left when the clock, not the
+// evaluation budget, ends the search.
 #include <fmt/format.h>
 #include <nlopt.h>
 
@@ -21,6 +30,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <set>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +42,7 @@
 #include "nlopt_stage.hpp"
 #include "ompl_stage.hpp"
 #include "outcome.hpp"
+#include "ranking.hpp"
 #include "robustness.hpp"
 #include "search_space.hpp"
 #include "task.hpp"
@@ -51,6 +64,12 @@ constexpr double kFTolerance = 2e-5;      // m
 constexpr int kMinPolishEvaluations = 100;  // a new polish needs this much budget
 constexpr int kMinContinueEvaluations = 40;  // and a continued one this much
 constexpr int kVerifyEvaluations = 200;
+constexpr int kSimplifyEvaluations = 150;  // polish of a side variant, held side
+constexpr double kSearchTimeShare = 0.75;  // of max_time_s: the global stage and the polish
+constexpr double kRefineTimeShare = 0.9;   // and the exact verification and side variants
+constexpr size_t kOpeningRound = 10;  // noise draws every candidate is sampled on first,
+constexpr size_t kFirstRound = 50;    // then on these before the race may drop any
+constexpr double kSameLanding = 1e-3;      // of the tolerance: side that moved nothing  // of max_time_s, for the global stage and the polish
 // A polish that ran out of evaluations counts as converged when it has stalled: over
 // the last half of its evaluations (at least kStallEvaluations) its best score fell by
 // no more than kProgress (m), or so slowly that kHorizon times as many evaluations
@@ -62,6 +81,7 @@ constexpr double kExactAccuracy = 1e-9;   // exact verification (the simulator's
 // Streams of the seed: 0 the global stage, 1 + i the i-th polish, then the rest.
 constexpr uint64_t kVerifyStream = 1u << 20;
 constexpr uint64_t kRobustStream = 1u << 21;
+constexpr uint64_t kSimplifyStream = 1u << 22;
 
 std::string mm(double metres) {
   if (!std::isfinite(metres)) return "no rest position";
@@ -177,12 +197,14 @@ struct Polish {
   bool converged() const { return detail::converged(code) || stalled; }
 };
 
+// A local polish from `start`; with `held_sidespin_k`, over speed, aim and topspin only.
 Polish polish(const Task& task, const PlannerOptions& options,
               const physics::SimulationOptions& simulation, const physics::Shot& start,
-              int max_evaluations, double max_time_s, uint64_t stream) {
+              int max_evaluations, double max_time_s, uint64_t stream,
+              std::optional<double> held_sidespin_k = std::nullopt) {
   const problems::Problem& problem = task.problem;
   // Centre a free aim on the start, so the polish never meets the seam at +-180.
-  const SearchSpace space(problem.limits, start.aim_deg);
+  const SearchSpace space(problem.limits, start.aim_deg, held_sidespin_k);
   NominalObjective objective(task, space, simulation, options.enforce_rigid_limit, false);
   std::vector<double> x = space.point(start);
   StageSettings s;
@@ -203,16 +225,19 @@ Polish polish(const Task& task, const PlannerOptions& options,
   return p;
 }
 
-// A described shot with its nominal score, for ranking.
+// A described shot with its nominal score and its noisy strokes' outcomes, for ranking.
 struct Final {
   PlannedShot shot;
   double score = kInf;
+  detail::Sampled sampled;        // its noisy strokes, on the common noise draws
+  int id = -1;                    // its place among the shots described
+  int parent = -1;                // a side variant: the id of the shot it simplifies
 };
 
-bool better(const Final& a, const Final& b) {
+// Solved first, then the nearer: how one shot per family is kept before the noise
+// is sampled, and which unsolved shot is reported when none is solved.
+bool nominally_better(const Final& a, const Final& b) {
   if (a.shot.solves != b.shot.solves) return a.shot.solves;
-  if (a.shot.solves && a.shot.success_probability != b.shot.success_probability)
-    return a.shot.success_probability > b.shot.success_probability;
   if (a.score != b.score) return a.score < b.score;
   return a.shot.miss_distance < b.shot.miss_distance;
 }
@@ -222,8 +247,9 @@ class Planning {
  public:
   Planning(const problems::Problem& problem, const PlannerOptions& options)
       : problem_(problem), options_(options), started_(Clock::now()),
-        deadline_(started_ + std::chrono::duration_cast<Clock::duration>(
-                                 std::chrono::duration<double>(options.max_time_s))) {}
+        deadline_(after(started_, options.max_time_s)),
+        search_deadline_(after(started_, kSearchTimeShare * options.max_time_s)),
+        refine_deadline_(after(started_, kRefineTimeShare * options.max_time_s)) {}
 
   PlanResult run() {
     if (check()) {
@@ -231,6 +257,7 @@ class Planning {
       global_stage(task);
       polish_stage(task);
       verify_stage(task);
+      simplify_stage(task);
       rank_stage(task);
       robust_stage(task);
       report_stage();
@@ -240,8 +267,17 @@ class Planning {
   }
 
  private:
+  static Clock::time_point after(Clock::time_point t, double seconds) {
+    return t + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  }
   double seconds_left() const {
     return std::chrono::duration<double>(deadline_ - Clock::now()).count();
+  }
+  double search_seconds_left() const {
+    return std::chrono::duration<double>(search_deadline_ - Clock::now()).count();
+  }
+  double refine_seconds_left() const {
+    return std::chrono::duration<double>(refine_deadline_ - Clock::now()).count();
   }
 
   // 1. The options, then the problem; nothing else checks them again.
@@ -275,7 +311,7 @@ class Planning {
       s.dimension = space.dimension();
       s.aim_coordinate = problem_.limits.aim.mode == problems::AimMode::free ? 1 : -1;
       s.max_evaluations = budget;
-      s.max_time_s = std::max(1e-6, options_.global_share * seconds_left());
+      s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
       s.goal_score = problem_.tolerance;  // a stroke in the zone: the polish takes it from there
       s.table_length = problem_.scene.length;
       s.table_width = problem_.scene.width;
@@ -289,7 +325,7 @@ class Planning {
       StageSettings s;
       s.algorithm = detail::nlopt_global(options_.global);
       s.max_evaluations = budget;
-      s.max_time_s = std::max(1e-6, options_.global_share * seconds_left());
+      s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
       s.inner = detail::nlopt_local(options_.local);
       s.inner_max_evaluations = std::max(20, s.max_evaluations / 10);
       s.inner_x_tolerance = kXTolerance;
@@ -299,7 +335,7 @@ class Planning {
       detail::run_stage(s, &x, &global);
     }
     result_.evaluations += global.evaluations();
-    timed_out_ = seconds_left() <= 0.0;
+    timed_out_ = search_seconds_left() <= 0.0;
     global_best_ = global.best();
 
     // Families by their best score (map order breaks ties, so the ranking is fixed);
@@ -313,15 +349,16 @@ class Planning {
                      [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
   }
 
-  // 3. Local polish in passes of up to local_starts starts, while nothing is solved.
-  // Each pass either continues the polishes that ran out of evaluations while still
-  // improving (the best families first) or, when all have converged, starts the next
-  // families; it ends once a shot lands or the budget is spent.
+  // 3. Local polish in passes of up to local_starts starts, until the budget is spent
+  // or every family met has been polished. Each pass either continues the polishes
+  // that ran out of evaluations while still improving (the best families first) or,
+  // when all have converged, starts the next families. It does not stop at the first
+  // shot that lands: the families polished after it are the alternatives the rank
+  // stage chooses from (bench/README.md, "Planner", measured what that buys and costs).
   void polish_stage(const Task& task) {
-    const double tol = problem_.tolerance;
     uint64_t stream = 1;
     const int first_share = (options_.max_evaluations - result_.evaluations) / options_.local_starts;
-    for (bool solved = false; !solved && !timed_out_;) {
+    for (bool solved = false; !(solved && options_.stop_at_first_solution) && !timed_out_;) {
       std::vector<size_t> unfinished;
       for (size_t i = 0; i < polished_.size(); ++i)
         if (!polished_[i].converged()) unfinished.push_back(i);
@@ -336,7 +373,7 @@ class Planning {
           {static_cast<int>(std::min<size_t>(options_.local_starts, available)), left / minimum});
       if (n <= 0) break;
       const int each = left / n;
-      const double time_left = seconds_left();
+      const double time_left = search_seconds_left();
       if (time_left <= 0.0) {
         timed_out_ = true;
         break;
@@ -359,7 +396,7 @@ class Planning {
         result_.evaluations += p.evaluations;
         spent += p.evaluations;
         timed_out_ = timed_out_ || detail::out_of_time(p.code);
-        solved = solved || p.best.score <= tol;
+        solved = solved || p.best.score <= problem_.tolerance;
         if (!continuing) {
           polished_.push_back(p);
           continue;
@@ -388,16 +425,38 @@ class Planning {
     }
   }
 
-  // A stroke simulated for the report and described.
-  Final described(const Task& task, const physics::Shot& shot) {
+  // A stroke simulated for the report and described; *simulations counts it.
+  Final describe_shot(const Task& task, const physics::Shot& shot, int* simulations) const {
     const physics::ShotResult r = task.simulate(shot, report_sim());
-    ++result_.evaluations;
-    return Final{detail::describe_outcome(problem_, shot, r, options_.enforce_rigid_limit),
-                 detail::shot_score(problem_, r, options_.enforce_rigid_limit)};
+    ++*simulations;
+    Final f;
+    f.shot = detail::describe_outcome(problem_, shot, r, options_.enforce_rigid_limit);
+    f.score = detail::shot_score(problem_, r, options_.enforce_rigid_limit);
+    return f;
+  }
+  Final described(const Task& task, const physics::Shot& shot) {
+    return describe_shot(task, shot, &result_.evaluations);
   }
 
   // The simulation the reported outcomes come from: exact when the search used the table.
   const physics::SimulationOptions& report_sim() const { return verify_ ? exact_ : sim_; }
+
+  // `shot` polished (with `held` side, if given) and described; when the exact
+  // verification moves a polished stroke out of the tolerance, polished again with it.
+  Final polished_and_described(const Task& task, const physics::Shot& shot, int max_evaluations,
+                               uint64_t stream, std::optional<double> held, int* simulations) const {
+    const Polish p = polish(task, options_, search_sim_, shot, max_evaluations,
+                            std::max(1e-6, refine_seconds_left()), stream, held);
+    *simulations += p.evaluations;
+    Final f = describe_shot(task, p.best.shot, simulations);
+    if (verify_ && !f.shot.solves && p.best.score <= problem_.tolerance && refine_seconds_left() > 0.0) {
+      const Polish again = polish(task, options_, exact_, p.best.shot, kVerifyEvaluations,
+                                  refine_seconds_left(), stream + kVerifyStream, held);
+      *simulations += again.evaluations;
+      if (again.best.score < f.score) f = describe_shot(task, again.best.shot, simulations);
+    }
+    return f;
+  }
 
   // 4. Describe each polished shot; with the table, verify it with the exact method.
   void verify_stage(const Task& task) {
@@ -411,55 +470,176 @@ class Planning {
       const physics::Shot shot = polished_[i].best.shot;
       Final f = described(task, shot);
       if (verify_ && !f.shot.solves && polished_[i].best.score <= problem_.tolerance &&
-          seconds_left() > 0.0) {
+          refine_seconds_left() > 0.0) {
         const Polish again = polish(task, options_, exact_, shot, kVerifyEvaluations,
-                                    seconds_left(), kVerifyStream + i);
+                                    refine_seconds_left(), kVerifyStream + i);
         result_.evaluations += again.evaluations;
         if (again.best.score < f.score) f = described(task, again.best.shot);
       }
       finals_.push_back(std::move(f));
     }
-  }
-
-  // The shot's success probability under the noise, counted as evaluations.
-  void estimate(const Task& task, Final& f) {
-    if (options_.robustness_samples == 0) return;
-    f.shot.success_probability = detail::success_probability(
-        task, f.shot.shot, options_.noise, options_.robustness_samples, options_.seed, sim_);
-    result_.evaluations += options_.robustness_samples;
-  }
-
-  // One shot per family (the better by `better`), best first.
-  void dedupe_and_rank() {
+    // One shot per family, the nearest first.
     std::map<Family, Final> by_family;
     for (Final& f : finals_) {
       auto [it, inserted] = by_family.try_emplace(f.shot.family_key, f);
-      if (!inserted && better(f, it->second)) it->second = f;
+      if (!inserted && nominally_better(f, it->second)) it->second = f;
     }
     finals_.clear();
     for (auto& [family, f] : by_family) finals_.push_back(std::move(f));
-    std::stable_sort(finals_.begin(), finals_.end(), better);
+    std::stable_sort(finals_.begin(), finals_.end(), nominally_better);
+    for (Final& f : finals_) f.id = next_id_++;
   }
 
-  // 5. One shot per family (the best), each with its success probability; the solved
-  // shots, or the best unsolved one when none is solved.
-  void rank_stage(const Task& task) {
-    dedupe_and_rank();
-    for (Final& f : finals_)
-      if (f.shot.solves) estimate(task, f);
-    std::stable_sort(finals_.begin(), finals_.end(), better);
-    any_solved_ = !finals_.empty() && finals_.front().shot.solves;
-    if (any_solved_) {
-      std::erase_if(finals_, [](const Final& f) { return !f.shot.solves; });
-    } else if (!finals_.empty()) {
-      finals_.resize(1);
-      estimate(task, finals_.front());
+  // 5. Side that may do nothing: every solved shot with side is tried with no side -
+  // as it is, and if it then misses, polished with the side held at zero (speed, aim
+  // and topspin free). Where the side changed nothing at all (the stroke without it
+  // stops within kSameLanding of the same place by the same cushions: side spent
+  // before the first cushion, or no cushion at all), it replaces the shot at once;
+  // otherwise the shot is also tried with half its side, and the variants that land
+  // join the candidates for the rank stage to decide whether the side earned its place.
+  void simplify_stage(const Task& task) {
+    if (options_.stop_at_first_solution) return;
+    std::vector<size_t> sided;
+    for (size_t i = 0; i < finals_.size(); ++i) {
+      const PlannedShot& p = finals_[i].shot;
+      if (p.solves && std::abs(p.shot.sidespin_k) >= detail::kCentreK) sided.push_back(i);
     }
+    const std::vector<Final> plain = variants(task, sided, 0.0, 0);
+    std::vector<size_t> halve;
+    std::set<int> replaced;
+    for (size_t j = 0; j < plain.size(); ++j) {
+      const Final& parent = finals_[sided[j]];
+      const Final& v = plain[j];
+      if (v.shot.solves && v.shot.route == parent.shot.route &&
+          std::hypot(v.shot.final_position.x - parent.shot.final_position.x,
+                     v.shot.final_position.y - parent.shot.final_position.y) <=
+              kSameLanding * problem_.tolerance)
+        replaced.insert(parent.id);
+      else if (std::abs(0.5 * parent.shot.shot.sidespin_k) >= detail::kCentreK)
+        halve.push_back(sided[j]);
+    }
+    const std::vector<Final> half = variants(task, halve, 0.5, plain.size());
+    std::erase_if(finals_, [&](const Final& f) { return replaced.count(f.id) > 0; });
+    for (const std::vector<Final>* found : {&plain, &half})
+      for (const Final& f : *found) {
+        if (!f.shot.solves) continue;
+        finals_.push_back(f);
+        finals_.back().id = next_id_++;
+      }
+  }
+
+  // The shots finals_[parents[j]] with `side_factor` times their side, each as it is or,
+  // when it misses, polished with that side held; in parallel, each polish on its own
+  // stream (from `stream_offset`). Each variant's parent is the shot's id.
+  std::vector<Final> variants(const Task& task, const std::vector<size_t>& parents,
+                              double side_factor, size_t stream_offset) {
+    std::vector<Final> out(parents.size());
+    if (parents.empty() || refine_seconds_left() <= 0.0) return {};
+    std::vector<int> simulations(parents.size(), 0);
+    physics::parallel_for(
+        parents.size(), physics::thread_count(options_.threads, static_cast<int>(parents.size())),
+        [&](size_t j, unsigned) {
+          physics::Shot shot = finals_[parents[j]].shot.shot;
+          shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
+          Final f = describe_shot(task, shot, &simulations[j]);
+          if (!f.shot.solves && refine_seconds_left() > 0.0)
+            f = polished_and_described(task, shot, kSimplifyEvaluations,
+                                       kSimplifyStream + stream_offset + j, shot.sidespin_k,
+                                       &simulations[j]);
+          f.parent = finals_[parents[j]].id;
+          out[j] = std::move(f);
+        });
+    for (int n : simulations) result_.evaluations += n;
+    return out;
+  }
+
+  // The success of each of `shots` on the common noise draws, raced: all are sampled
+  // on the first kOpeningRound draws (so that a deadline leaves none without any), then
+  // on the first kFirstRound, then, doubling the draws each round up to
+  // robustness_samples, only those the samples cannot yet tell are worse than the
+  // leader (McNemar's test, ranking.hpp). A shot dropped early keeps its shorter
+  // sample (its Estimate says how many). Each round runs in parallel; the simulations
+  // count as evaluations; nothing is started after the deadline.
+  void estimate(const Task& task, const std::vector<Final*>& shots) {
+    const size_t samples = static_cast<size_t>(options_.robustness_samples);
+    if (samples == 0 || shots.empty()) return;
+    std::vector<Final*> alive = shots;
+    for (size_t n = std::min(samples, kOpeningRound);;
+         n = std::min(samples, n < kFirstRound ? kFirstRound : 2 * n)) {
+      draws_.grow_to(n, deadline_);
+      const std::span<const detail::NoiseDraw> draws(draws_.draws().data(),
+                                                     std::min(n, draws_.draws().size()));
+      std::vector<int> before(alive.size());
+      for (size_t i = 0; i < alive.size(); ++i) before[i] = alive[i]->sampled.simulations;
+      physics::parallel_for(
+          alive.size(), physics::thread_count(options_.threads, static_cast<int>(alive.size())),
+          [&](size_t i, unsigned) {
+            Final& f = *alive[i];
+            detail::extend_sample(task, f.shot.shot, draws, options_.noise, sim_, deadline_,
+                                  &f.sampled);
+          });
+      for (size_t i = 0; i < alive.size(); ++i) {
+        Final& f = *alive[i];
+        result_.evaluations += f.sampled.simulations - before[i];
+        f.shot.success = f.sampled.success;
+        f.shot.success_probability = f.sampled.success.both.p;
+      }
+      if (n == samples || draws.size() < n || Clock::now() >= deadline_) break;
+      if (n < kFirstRound) continue;  // too few draws to tell strokes apart
+      const Final* leader = alive.front();
+      for (const Final* f : alive)
+        if (f->sampled.success.both.p > leader->sampled.success.both.p) leader = f;
+      std::erase_if(alive, [&](const Final* f) {
+        return f->sampled.success.both.p < leader->sampled.success.both.p &&
+               detail::significantly_different(f->sampled.outcomes, leader->sampled.outcomes);
+      });
+    }
+  }
+
+  // The coach's order of the (solved, estimated) finals, one shot per family.
+  void coach_rank() {
+    std::vector<detail::RankItem> items;
+    for (const Final& f : finals_)
+      items.push_back(
+          {&f.sampled.outcomes, f.shot.success.both, detail::effort(f.shot.shot, problem_.limits)});
+    std::vector<Final> ranked;
+    std::set<Family> seen;
+    for (size_t i : detail::coach_order(items))
+      if (seen.insert(finals_[i].shot.family_key).second) ranked.push_back(std::move(finals_[i]));
+    finals_ = std::move(ranked);
+  }
+
+  // 6. The solved shots by the coach's order, each with its success; or the nearest
+  // unsolved one when none is solved.
+  void rank_stage(const Task& task) {
+    any_solved_ = std::any_of(finals_.begin(), finals_.end(),
+                              [](const Final& f) { return f.shot.solves; });
+    if (!any_solved_) {
+      if (finals_.empty()) return;
+      finals_.resize(1);
+      estimate(task, {&finals_.front()});
+      return;
+    }
+    std::erase_if(finals_, [](const Final& f) { return !f.shot.solves; });
+    std::vector<Final*> all;
+    for (Final& f : finals_) all.push_back(&f);
+    estimate(task, all);
+    // Of a shot and its side variants, one with less side replaces one with more when
+    // the samples cannot tell them apart: that side did nothing a player could count on.
+    const auto root = [](const Final& f) { return f.parent >= 0 ? f.parent : f.id; };
+    std::set<int> replaced;
+    for (const Final& a : finals_)
+      for (const Final& b : finals_)
+        if (root(a) == root(b) && std::abs(b.shot.shot.sidespin_k) < std::abs(a.shot.shot.sidespin_k) &&
+            !detail::significantly_different(a.sampled.outcomes, b.sampled.outcomes))
+          replaced.insert(a.id);
+    std::erase_if(finals_, [&](const Final& f) { return replaced.count(f.id) > 0; });
+    coach_rank();
     const size_t keep = static_cast<size_t>(options_.max_alternatives) + 1;
     if (finals_.size() > keep) finals_.resize(keep);
   }
 
-  // 6. Robust mode: polish each solved shot for its chance under the noise.
+  // 7. Robust mode: polish each solved shot for its chance under the noise.
   void robust_stage(const Task& task) {
     if (!options_.robust || !any_solved_ || seconds_left() <= 0.0) return;
     const std::vector<detail::NoiseDraw> draws = detail::noise_draws(
@@ -489,20 +669,29 @@ class Planning {
           robust[i] = {objective.simulations() > 0 ? objective.best() : start,
                        objective.simulations()};
         });
+    std::vector<Final> candidates;
     for (int i = 0; i < n; ++i) {
       result_.evaluations += robust[i].second;
       Final f = described(task, robust[i].first);
-      if (!f.shot.solves) continue;
-      estimate(task, f);
-      if (f.shot.success_probability > finals_[i].shot.success_probability) {
-        finals_[i] = std::move(f);
+      f.id = i;
+      if (f.shot.solves) candidates.push_back(std::move(f));
+    }
+    std::vector<Final*> all;
+    for (Final& f : candidates) all.push_back(&f);
+    estimate(task, all);
+    for (Final& f : candidates) {
+      Final& was = finals_[static_cast<size_t>(f.id)];
+      if (f.shot.success_probability > was.shot.success_probability) {
+        f.parent = was.parent;
+        f.id = was.id;
+        was = std::move(f);
         ++robust_improved_;
       }
     }
-    dedupe_and_rank();
+    coach_rank();
   }
 
-  // 7. Status and the sentence that explains it.
+  // 8. Status and the sentence that explains it.
   void report_stage() {
     PlanResult& result = result_;
     const double tol = problem_.tolerance;
@@ -523,9 +712,12 @@ class Planning {
     if (best.solves) {
       result.status = PlanStatus::solved;
       result.message = "Solved: " + where;
-      if (options_.robustness_samples > 0)
-        result.message += fmt::format(" and lands in {:.0f} % of strokes with a player's error",
-                                      100.0 * best.success_probability);
+      const Estimate& e = best.success.both;
+      if (e.samples > 0)
+        result.message += fmt::format(
+            " and succeeds in {:.0f} % of strokes with a player's error (95 % interval {:.0f}-{:.0f} "
+            "%)",
+            100.0 * e.p, 100.0 * e.low, 100.0 * e.high);
       result.message += ".";
       if (!result.alternatives.empty())
         result.message += fmt::format(" {} other way{} found.", result.alternatives.size(),
@@ -582,6 +774,8 @@ class Planning {
   const PlannerOptions& options_;
   const Clock::time_point started_;
   const Clock::time_point deadline_;
+  const Clock::time_point search_deadline_;
+  const Clock::time_point refine_deadline_;
   PlanResult result_;
   physics::SimulationOptions sim_;         // the search's simulation, without paths
   physics::SimulationOptions search_sim_;  // the same with the search's event cap
@@ -594,6 +788,8 @@ class Planning {
   bool timed_out_ = false;
   bool out_of_evaluations_ = false;
   std::vector<Final> finals_;
+  int next_id_ = 0;  // Final::id of the next shot described for ranking
+  detail::NoiseStream draws_{options_.seed};  // the common draws of every success estimate
   bool any_solved_ = false;
   int robust_improved_ = 0;
 };

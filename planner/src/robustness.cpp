@@ -24,21 +24,34 @@ uint64_t stream_seed(uint64_t seed, uint64_t stream) {
   return z ^ (z >> 31);
 }
 
-std::vector<NoiseDraw> noise_draws(int samples, uint64_t seed) {
-  std::mt19937_64 rng(stream_seed(seed, 0x6e6f697365ULL));  // "noise"
-  std::vector<NoiseDraw> draws(static_cast<size_t>(std::max(samples, 0)));
+NoiseStream::NoiseStream(uint64_t seed) : rng_(stream_seed(seed, 0x6e6f697365ULL)) {}  // "noise"
+
+void NoiseStream::grow_to(size_t count, Clock::time_point deadline) {
+  constexpr size_t kChunk = 4096;  // draws between looks at the clock
+  const bool timed = deadline != Clock::time_point::max();
   // Box-Muller: two uniforms give two independent standard normals.
   auto pair = [&](double* a, double* b) {
-    const double r = std::sqrt(-2.0 * std::log(open_uniform(rng)));
-    const double t = 2.0 * std::numbers::pi * open_uniform(rng);
+    const double r = std::sqrt(-2.0 * std::log(open_uniform(rng_)));
+    const double t = 2.0 * std::numbers::pi * open_uniform(rng_);
     *a = r * std::cos(t);
     *b = r * std::sin(t);
   };
-  for (NoiseDraw& d : draws) {
-    pair(&d.aim, &d.speed);
-    pair(&d.right, &d.up);
+  while (draws_.size() < count) {
+    if (timed && Clock::now() >= deadline) return;
+    const size_t end = std::min(count, draws_.size() + kChunk);
+    while (draws_.size() < end) {
+      NoiseDraw d;
+      pair(&d.aim, &d.speed);
+      pair(&d.right, &d.up);
+      draws_.push_back(d);
+    }
   }
-  return draws;
+}
+
+std::vector<NoiseDraw> noise_draws(int samples, uint64_t seed) {
+  NoiseStream stream(seed);
+  stream.grow_to(static_cast<size_t>(std::max(samples, 0)));
+  return stream.draws();
 }
 
 bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseModel& noise,
@@ -85,29 +98,89 @@ double soft_success(const Task& task, const physics::Shot& shot,
 
 }  // namespace detail
 
+Success estimate_success(const problems::Problem& problem, const physics::Shot& shot,
+                         const NoiseModel& noise, int samples, uint64_t seed,
+                         const physics::SimulationOptions& simulation) {
+  if (samples <= 0 || noise.validate()) return {};
+  const detail::Task task(problem);
+  return detail::sample_success(task, shot, detail::noise_draws(samples, seed), noise, simulation)
+      .success;
+}
+
 double success_probability(const problems::Problem& problem, const physics::Shot& shot,
                            const NoiseModel& noise, int samples, uint64_t seed,
                            const physics::SimulationOptions& simulation) {
-  return detail::success_probability(detail::Task(problem), shot, noise, samples, seed, simulation);
+  return estimate_success(problem, shot, noise, samples, seed, simulation).both.p;
+}
+
+Estimate wilson_estimate(int successes, int samples) {
+  Estimate e;
+  e.samples = std::max(samples, 0);
+  e.successes = std::clamp(successes, 0, e.samples);
+  if (e.samples == 0) return e;
+  // Wilson score interval: the p whose normal test at z does not reject the count.
+  constexpr double z = 1.959963984540054;  // two-sided 95 %
+  const double n = e.samples;
+  const double p = e.successes / n;
+  const double z2n = z * z / n;
+  const double centre = (p + z2n / 2.0) / (1.0 + z2n);
+  const double half = z / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / n + z2n / (4.0 * n));
+  e.p = p;
+  e.low = e.successes == 0 ? 0.0 : std::max(0.0, centre - half);
+  e.high = e.successes == e.samples ? 1.0 : std::min(1.0, centre + half);
+  return e;
 }
 
 namespace detail {
 
-double success_probability(const Task& task, const physics::Shot& shot, const NoiseModel& noise,
-                           int samples, uint64_t seed, const physics::SimulationOptions& simulation) {
-  if (samples <= 0 || noise.validate()) return 0.0;
+uint8_t judge(const Task& task, const physics::ShotResult& result) {
+  return problems::reaches_target(task.problem, result) ? kSucceeded : kPotted;
+}
+
+Success success_of(const Task& task, const std::vector<uint8_t>& outcomes) {
+  (void)task;
+  int potted = 0, both = 0;
+  for (uint8_t o : outcomes) {
+    potted += (o & kPotted) != 0;
+    both += (o & kSucceeded) == kSucceeded;
+  }
+  const int n = static_cast<int>(outcomes.size());
+  Success s;
+  s.both = wilson_estimate(both, n);
+  s.position = s.both;
+  return s;
+}
+
+Sampled sample_success(const Task& task, const physics::Shot& shot,
+                       std::span<const NoiseDraw> draws, const NoiseModel& noise,
+                       const physics::SimulationOptions& simulation, Clock::time_point deadline) {
+  Sampled out;
+  extend_sample(task, shot, draws, noise, simulation, deadline, &out);
+  return out;
+}
+
+void extend_sample(const Task& task, const physics::Shot& shot, std::span<const NoiseDraw> draws,
+                   const NoiseModel& noise, const physics::SimulationOptions& simulation,
+                   Clock::time_point deadline, Sampled* sampled) {
   const problems::Problem& problem = task.problem;
   physics::SimulationOptions quiet = simulation;
   quiet.record_path = false;
   const double radius = problem.scene.radius();
   const double miscue = miscue_limit(problem);
-  int landed = 0;
-  for (const NoiseDraw& d : noise_draws(samples, seed)) {
+  const bool timed = deadline != Clock::time_point::max();
+  std::vector<uint8_t>& outcomes = sampled->outcomes;
+  outcomes.reserve(draws.size());
+  for (size_t i = outcomes.size(); i < draws.size(); ++i) {
+    if (timed && Clock::now() >= deadline) break;
     physics::Shot s;
-    if (!noisy_stroke(shot, d, noise, radius, miscue, &s)) continue;
-    if (problems::reaches_target(problem, task.simulate(s, quiet))) ++landed;
+    if (!noisy_stroke(shot, draws[i], noise, radius, miscue, &s)) {
+      outcomes.push_back(0);  // a miscue fails every condition
+      continue;
+    }
+    outcomes.push_back(judge(task, task.simulate(s, quiet)));
+    ++sampled->simulations;
   }
-  return static_cast<double>(landed) / samples;
+  sampled->success = success_of(task, outcomes);
 }
 
 }  // namespace detail

@@ -1,7 +1,10 @@
 // A player's execution noise: seeded draws, noisy strokes, and how often they land.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <random>
+#include <span>
 #include <vector>
 
 #include "cueplan/planner/planner.hpp"
@@ -20,6 +23,23 @@ struct NoiseDraw {
 // platform (the normals come from mt19937_64 by Box-Muller, not from <random>'s
 // implementation-defined distributions).
 std::vector<NoiseDraw> noise_draws(int samples, uint64_t seed);
+
+using Clock = std::chrono::steady_clock;
+
+// The same stream drawn as far as it is needed: draws() are always the first draws of
+// noise_draws(n, seed).
+class NoiseStream {
+ public:
+  explicit NoiseStream(uint64_t seed);
+  // Draws until there are `count`, or until `deadline` passes (checked every few
+  // thousand draws).
+  void grow_to(size_t count, Clock::time_point deadline = Clock::time_point::max());
+  const std::vector<NoiseDraw>& draws() const { return draws_; }
+
+ private:
+  std::mt19937_64 rng_;
+  std::vector<NoiseDraw> draws_;
+};
 
 // The stroke a player makes aiming at `shot` with errors `draw` scaled by `noise`.
 // False for a miscue (tip offset beyond miscue_k) or a stroke without speed.
@@ -40,8 +60,35 @@ double soft_success(const Task& task, const physics::Shot& shot,
                     const std::vector<NoiseDraw>& draws, const NoiseModel& noise,
                     const physics::SimulationOptions& simulation, int* simulations);
 
-// planner::success_probability on a checked task.
-double success_probability(const Task& task, const physics::Shot& shot, const NoiseModel& noise,
-                           int samples, uint64_t seed, const physics::SimulationOptions& simulation);
+// What one noisy stroke did, as bits: the pot's conditions held (always set without a
+// pot, unless the stroke miscued), and the position's too.
+inline constexpr uint8_t kPotted = 1;
+inline constexpr uint8_t kPositioned = 2;
+inline constexpr uint8_t kSucceeded = kPotted | kPositioned;
+
+// The outcome bits of a stroke's simulated result on the task's problem.
+uint8_t judge(const Task& task, const physics::ShotResult& result);
+
+// A Monte Carlo estimate draw by draw: outcomes[i] is what the noisy stroke of draws[i]
+// did, for the draws simulated before the deadline (a prefix of them), so two strokes
+// sampled with the same draws can be compared pair by pair (common random numbers).
+struct Sampled {
+  std::vector<uint8_t> outcomes;
+  Success success;
+  int simulations = 0;  // strokes simulated (a miscue is not simulated)
+};
+
+// `shot` played with each of `draws` until they run out or `deadline` passes.
+Sampled sample_success(const Task& task, const physics::Shot& shot,
+                       std::span<const NoiseDraw> draws, const NoiseModel& noise,
+                       const physics::SimulationOptions& simulation,
+                       Clock::time_point deadline = Clock::time_point::max());
+// The same, continuing *sampled with the draws after those it has.
+void extend_sample(const Task& task, const physics::Shot& shot, std::span<const NoiseDraw> draws,
+                   const NoiseModel& noise, const physics::SimulationOptions& simulation,
+                   Clock::time_point deadline, Sampled* sampled);
+
+// The success of a set of outcome bits (all of them, in order).
+Success success_of(const Task& task, const std::vector<uint8_t>& outcomes);
 
 }  // namespace cueplan::planner::detail

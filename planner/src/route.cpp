@@ -154,6 +154,7 @@ bool steer(const problems::Problem& problem, const RouteOptions& options, physic
   o.threads = 1;
   o.robustness_samples = 0;
   o.max_alternatives = 0;
+  o.stop_at_first_solution = true;
   o.verify_exact = false;
   o.simulation = options.simulation;
   o.simulation.record_path = false;
@@ -568,8 +569,9 @@ Verified verify(Context& ctx, const std::vector<physics::Shot>& shots) {
     s.zone_radius = last ? p.tolerance : o.intermediate_zone_m;
     if (o.robustness_samples > 0) {
       const problems::Problem zone = zone_problem(p, o, at, e.final_position, last);
-      s.planned.success_probability = success_probability(
-          zone, e.shot, o.noise, o.robustness_samples, mix(o.seed, kSuccessStream), exact);
+      s.planned.success = estimate_success(zone, e.shot, o.noise, o.robustness_samples,
+                                           mix(o.seed, kSuccessStream), exact);
+      s.planned.success_probability = s.planned.success.both.p;
       ctx.evaluations += o.robustness_samples;
     }
     at = e.final_position;

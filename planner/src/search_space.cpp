@@ -63,8 +63,14 @@ double wrap_degrees(double deg) {
   return w >= 180.0 ? w - 360.0 : w;
 }
 
-SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg)
-    : limits_(limits) {
+SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg,
+                         std::optional<double> held_sidespin_k)
+    : limits_(limits), held_sidespin_(held_sidespin_k) {
+  if (held_sidespin_) {
+    held_sidespin_ = std::clamp(*held_sidespin_, -limits.spin_max, limits.spin_max);
+    topspin_reach_ = std::sqrt(std::max(
+        0.0, limits.spin_max * limits.spin_max - *held_sidespin_ * *held_sidespin_));
+  }
   switch (limits.aim.mode) {
     case problems::AimMode::free:
       aim_lo_ = aim_centre_deg - 180.0;
@@ -91,6 +97,11 @@ physics::Shot SearchSpace::shot(const double* u) const {
   } else {
     s.aim_deg = aim_lo_;
   }
+  if (held_sidespin_) {
+    s.sidespin_k = *held_sidespin_;
+    s.topspin_k = topspin_reach_ * (2.0 * clamp01(u[i]) - 1.0);
+    return s;
+  }
   double side, top;
   square_to_disc(2.0 * clamp01(u[i]) - 1.0, 2.0 * clamp01(u[i + 1]) - 1.0, &side, &top);
   s.sidespin_k = limits_.spin_max * side;
@@ -106,6 +117,11 @@ std::vector<double> SearchSpace::point(const physics::Shot& shot) const {
     // Bring the aim into [lo, lo + 360) before placing it in the searched interval.
     aim = aim_lo_ + (wrap_degrees(aim - aim_lo_ - 180.0) + 180.0);
     u.push_back(clamp01((aim - aim_lo_) / (aim_hi_ - aim_lo_)));
+  }
+  if (held_sidespin_) {
+    const double t = topspin_reach_ > 0.0 ? shot.topspin_k / topspin_reach_ : 0.0;
+    u.push_back(clamp01(0.5 * (t + 1.0)));
+    return u;
   }
   double a, b;
   const double r = std::hypot(shot.sidespin_k, shot.topspin_k);

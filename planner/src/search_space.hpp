@@ -6,9 +6,11 @@
 // of Shirley and Chiu (1997), so a box-bounded optimiser respects the miscue limit
 // exactly and a uniform sample of the cube is uniform over the disc. A free aim spans
 // one turn centred on `aim_centre_deg`, so a local search can be centred on its start
-// and never meets the seam.
+// and never meets the seam. With a held sidespin the spin is one coordinate: the
+// topspin, across the chord of the disc at that sidespin.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "cueplan/physics/shot.hpp"
@@ -26,9 +28,12 @@ double wrap_degrees(double deg);
 class SearchSpace {
  public:
   // `aim_centre_deg` matters for a free aim only: the searched turn is centred there.
-  explicit SearchSpace(const problems::Limits& limits, double aim_centre_deg = 0.0);
+  // `held_sidespin_k` (|k_S| <= spin_max) fixes the sidespin and leaves the topspin
+  // searched within the spin limit.
+  explicit SearchSpace(const problems::Limits& limits, double aim_centre_deg = 0.0,
+                       std::optional<double> held_sidespin_k = std::nullopt);
 
-  int dimension() const { return aim_searched_ ? 4 : 3; }
+  int dimension() const { return (aim_searched_ ? 2 : 1) + (held_sidespin_ ? 1 : 2); }
   bool aim_searched() const { return aim_searched_; }
 
   // The stroke at a point of the unit cube (coordinates are clamped into [0, 1]).
@@ -41,6 +46,8 @@ class SearchSpace {
   problems::Limits limits_;
   double aim_lo_ = 0.0, aim_hi_ = 0.0;  // deg, the searched interval
   bool aim_searched_ = true;
+  std::optional<double> held_sidespin_;
+  double topspin_reach_ = 0.0;  // with a held sidespin: |k_T| within the spin limit
 };
 
 }  // namespace cueplan::planner::detail

@@ -382,6 +382,21 @@ TEST(Figures, WritesEveryFigureAndItsNumbers) {
     EXPECT_GE(std::stod(slips[i].at("impulse")), std::stod(slips[i - 1].at("impulse")));
 }
 
+TEST(Figures, FormatFlagChoosesPdfOrPng) {
+  for (const auto& [format, magic] : {std::pair<std::string, std::string>{"pdf", "%PDF-"},
+                                      std::pair<std::string, std::string>{"png", "\x89PNG"}}) {
+    const fs::path dir = scratch() / ("figures_" + format);
+    const ProcessResult run =
+        cueplan("figures --alpha-step 5 --format " + format + " --out '" + dir.string() + "'", format);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    for (const char* stem : {"fig08_rolling", "fig09_topspin", "fig10_sidespin", "fig12_slip_vs_impulse"}) {
+      EXPECT_EQ(read_text(dir / (std::string(stem) + "." + format)).substr(0, magic.size()), magic) << stem;
+      EXPECT_TRUE(fs::exists(dir / (std::string(stem) + ".csv"))) << stem;
+      EXPECT_FALSE(fs::exists(dir / (std::string(stem) + ".svg"))) << stem;
+    }
+  }
+}
+
 TEST(Figures, UnwritableDirectoryExitsTwo) {
   const fs::path blocker = scratch() / "a_file";
   write_text(blocker, "not a directory\n");

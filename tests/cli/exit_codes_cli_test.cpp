@@ -86,6 +86,11 @@ const BadCommandLine kBadCommandLines[] = {
     {"ReboundRestitutionNaN", "rebound --speed 1 --angle 45 --restitution nan", "--restitution"},
     {"ReboundBatchMissing", "rebound --batch SCRATCH/missing.csv", "--batch"},
     {"ReboundThreadsNegative", "rebound --batch SCRATCH/missing.csv --threads -1", "--threads"},
+    // collide
+    {"CollideSpeedNaN", "collide --speed nan --cut 30", "--speed"},
+    {"CollideCutMissing", "collide --speed 1", "--cut"},
+    {"CollideUnknownModel", "collide --speed 1 --cut 30 --model fast", "--model"},
+    {"CollideBatchMissing", "collide --batch SCRATCH/missing.csv", "--batch"},
     // simulate
     {"SimulateSpeedNaN", "simulate PROBLEM --speed nan --aim 0", "--speed"},
     {"SimulateSpeedNegative", "simulate PROBLEM --speed -2 --aim 0", "--speed"},
@@ -101,6 +106,8 @@ const BadCommandLine kBadCommandLines[] = {
     {"SimulateSvgIsADirectory", "simulate PROBLEM --speed 1 --aim 0 --svg SCRATCH", "--svg"},
     {"SimulateBadSpeedWithSvg", "simulate PROBLEM --speed nan --aim 0 --svg SCRATCH/path.svg",
      "--speed"},
+    {"SimulateSvgUnknownExtension", "simulate PROBLEM --speed 1 --aim 0 --svg SCRATCH/path.jpg",
+     "--svg"},
     // solve
     {"SolveProblemMissing", "solve SCRATCH/missing.yaml --method exact", "missing.yaml"},
     {"SolveThreadsNegative", "solve PROBLEM --method exact --threads -1", "--threads"},
@@ -112,6 +119,9 @@ const BadCommandLine kBadCommandLines[] = {
      "--svg"},
     {"SolveBadFlagWithSvg",
      "solve PROBLEM --method exact --threads -1 --svg SCRATCH/plan.svg", "--threads"},
+    {"SolveSvgUnknownExtension", "solve PROBLEM --method exact --svg SCRATCH/plan.gif", "--svg"},
+    // route
+    {"RouteSvgUnknownExtension", "route PROBLEM --svg SCRATCH/route.txt", "--svg"},
     // spinmap
     {"SpinmapOutMissing", "spinmap PROBLEM --speed 1 --aim 0", "--out"},
     {"SpinmapOutNotAPicture", "spinmap PROBLEM --speed 1 --aim 0 --out SCRATCH/map.txt", "--out"},
@@ -130,6 +140,7 @@ const BadCommandLine kBadCommandLines[] = {
     {"FiguresStepZero", "figures --out SCRATCH/figures --alpha-step 0", "--alpha-step"},
     {"FiguresStepNaN", "figures --out SCRATCH/figures --alpha-step nan", "--alpha-step"},
     {"FiguresOutIsAFile", "figures --out SCRATCH/not_a_directory", "--out"},
+    {"FiguresUnknownFormat", "figures --out SCRATCH/figures --format jpg", "--format"},
 };
 
 INSTANTIATE_TEST_SUITE_P(EveryCommand, BadArguments, ::testing::ValuesIn(kBadCommandLines),

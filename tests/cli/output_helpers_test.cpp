@@ -1,13 +1,14 @@
-// Tests of the command line's reusable output helpers: CSV text and the SVG plot writer.
+// Tests of the command line's reusable output helpers: CSV text and picture files.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "csv.hpp"
-#include "svg_plot.hpp"
+#include "output_file.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -42,47 +43,15 @@ TEST(Csv, TableRowsMustMatchTheHeader) {
   EXPECT_THROW(table.add_numbers({1.0}), std::logic_error);
 }
 
-PlotFigure two_panel_figure() {
-  PlotSeries line;
-  line.label = "k_{T} < 1 & more";
-  line.x = {0.0, 1.0, NAN, 2.0, 3.0};
-  line.y = {0.0, 1.0, 1.5, 2.0, 1.0};
-  PlotPanel panel;
-  panel.title = "Panel";
-  panel.x_axis.label = "x (m)";
-  panel.y_axis.label = "y (m/s)";
-  panel.series = {line};
-  PlotFigure figure;
-  figure.title = "Title";
-  figure.panels = {panel, panel};
-  return figure;
-}
-
-TEST(SvgPlot, EscapesTextAndWritesSubscripts) {
-  const std::string svg = render_svg(two_panel_figure());
-  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
-  EXPECT_NE(svg.find("&lt; 1 &amp; more"), std::string::npos);
-  EXPECT_EQ(svg.find("_{"), std::string::npos);
-  EXPECT_NE(svg.find("<tspan"), std::string::npos);
-  EXPECT_NE(svg.find("</svg>"), std::string::npos);
-}
-
-TEST(SvgPlot, NonFiniteValuesBreakTheLine) {
-  const std::string svg = render_svg(two_panel_figure());
-  // Two panels, each path starting twice: once before the NaN, once after it.
-  size_t moves = 0;
-  for (size_t at = svg.find("<path d=\" M"); at != std::string::npos;
-       at = svg.find("<path d=\" M", at + 1)) {
-    const std::string path = svg.substr(at, svg.find("/>", at) - at);
-    for (size_t m = path.find(" M"); m != std::string::npos; m = path.find(" M", m + 1)) ++moves;
-  }
-  EXPECT_EQ(moves, 4u);
-}
-
-TEST(SvgPlot, ClipPathsAreUniquePerPanel) {
-  const std::string svg = render_svg(two_panel_figure());
-  EXPECT_NE(svg.find("id=\"plot-area-0\""), std::string::npos);
-  EXPECT_NE(svg.find("id=\"plot-area-1\""), std::string::npos);
+// A picture's file must name its format; the message names the flag.
+TEST(OutputFile, PictureNeedsAKnownExtension) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  EXPECT_EQ(check_picture_file("--svg", dir / "plan.svg"), "");
+  EXPECT_EQ(check_picture_file("--svg", dir / "plan.PNG"), "");
+  EXPECT_EQ(check_picture_file("--out", dir / "plan.pdf"), "");
+  const std::string jpg = check_picture_file("--svg", dir / "plan.jpg");
+  EXPECT_EQ(jpg.rfind("--svg must name a .svg, .png or .pdf file", 0), 0u) << jpg;
+  EXPECT_EQ(check_picture_file("--out", dir / "missing_dir_xyz" / "p.svg").rfind("--out: ", 0), 0u);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "cli_test_support.hpp"
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
 
 // The test files share their helpers (cli_test_support.hpp) by living in its namespace.
@@ -118,6 +119,43 @@ TEST(Simulate, JsonEqualsAnIndependentLibrarySimulation) {
   EXPECT_EQ(j.at("units").at("position"), "m");
 }
 
+// --samples N: the stroke's success under the planner's noise, with its 95 % Wilson
+// interval, as the library estimates it for the same seed; without noise every stroke
+// is the nominal one, which lands, so p = 1 and the lower bound is N / (N + z^2).
+TEST(Simulate, SamplesEstimateTheSuccessWithItsInterval) {
+  const prob::Problem problem = shipped("one_rail_position");
+  const ProcessResult run = cueplan(one_rail_command("--samples 120 --seed 3 --json"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  const cueplan::planner::Success expected = cueplan::planner::estimate_success(
+      problem, kOneRail, cueplan::planner::NoiseModel{}, 120, 3, phys::SimulationOptions{});
+  const json& success = j.at("success");
+  EXPECT_FALSE(success.contains("pot"));
+  EXPECT_EQ(success.at("both"), success.at("position"));
+  EXPECT_EQ(success.at("both").at("samples").get<int>(), 120);
+  EXPECT_EQ(success.at("both").at("p").get<double>(), expected.both.p);
+  EXPECT_EQ(success.at("both").at("low").get<double>(), expected.both.low);
+  EXPECT_EQ(success.at("both").at("high").get<double>(), expected.both.high);
+  EXPECT_GT(expected.both.p, 0.0);
+  EXPECT_LT(expected.both.p, 1.0);
+  EXPECT_EQ(j.at("noise").at("seed").get<int>(), 3);
+
+  const ProcessResult still = cueplan(one_rail_command("--samples 40 --noise 0 --json"), "still");
+  ASSERT_EQ(still.exit_code, 0) << still.err;
+  const json still_json = json::parse(still.out);
+  const json& perfect = still_json.at("success").at("both");
+  const double z2 = 1.959963984540054 * 1.959963984540054;
+  EXPECT_EQ(perfect.at("p").get<double>(), 1.0);
+  EXPECT_NEAR(perfect.at("low").get<double>(), 40.0 / (40.0 + z2), 1e-12);
+  EXPECT_EQ(perfect.at("high").get<double>(), 1.0);
+
+  const ProcessResult text = cueplan(one_rail_command("--samples 120 --seed 3"), "text");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("success         "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("(95 % interval "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("of 120 noisy strokes solve the problem"), std::string::npos) << text.out;
+}
+
 // The paper scheme reaches the simulator too, and its answer is close to the exact one.
 TEST(Simulate, PaperMethodIsTheLibrarysPaperMethod) {
   const ProcessResult run = cueplan(one_rail_command("--method paper --json"));
@@ -214,7 +252,10 @@ TEST(Simulate, ShotOutsideTheProblemLimitsIsSimulatedAndNamed) {
 // ---------------------------------------------------------------------------
 // --svg
 
-TEST(SimulateSvg, DrawsTheTableTargetPathAndContacts) {
+// What the drawing shows - pockets, contacts, the rest position, obstacles, an open
+// table - is checked on the same scenes in tests/draw (cueplan::draw's marks); here, that
+// the command writes it, whole, in the format its file name asks for.
+TEST(SimulateSvg, WritesAnSvgDocumentTitledWithTheShot) {
   const fs::path file = scratch() / "one_rail.svg";
   const ProcessResult run = cueplan(one_rail_command("--svg '" + file.string() + "'"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -225,43 +266,46 @@ TEST(SimulateSvg, DrawsTheTableTargetPathAndContacts) {
   ASSERT_NE(root, std::string::npos);
   EXPECT_TRUE(svg.rfind("<?xml", 0) == 0 || root == 0);
   EXPECT_EQ(svg.find('<', svg.find("?>") + 2), root);
-  EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
-  EXPECT_EQ(count_of(svg, "<g"), count_of(svg, "</g>"));
-
+  EXPECT_TRUE(svg.ends_with("</svg>\n") || svg.ends_with("</svg>")) << svg.substr(svg.size() - 20);
+  const size_t title = svg.find("<title>");
+  ASSERT_NE(title, std::string::npos);
+  EXPECT_EQ(svg.find("one-rail position: V = 1.002 m/s"), title + 7) << "the title gives the shot";
   const phys::ShotResult expected = library_shot(shipped("one_rail_position"), kOneRail);
-  EXPECT_NE(svg.find("class=\"cloth\""), std::string::npos);
-  EXPECT_NE(svg.find("class=\"cushion-band\""), std::string::npos);
-  EXPECT_EQ(count_of(svg, "class=\"pocket\""), 6u);
-  EXPECT_NE(svg.find("class=\"target-zone\""), std::string::npos);
-  EXPECT_NE(svg.find("class=\"cue-ball\""), std::string::npos);
-  EXPECT_NE(svg.find("class=\"final-position\""), std::string::npos);
-  EXPECT_NE(svg.find("<path class=\"sliding\" d=\"M"), std::string::npos);
-  EXPECT_NE(svg.find("<path class=\"rolling\" d=\"M"), std::string::npos);
-  EXPECT_EQ(count_of(svg, "class=\"cushion-contact\""), static_cast<size_t>(expected.cushion_hits));
-  EXPECT_NE(svg.find("one-rail position"), std::string::npos);
-  EXPECT_NE(svg.find(">sliding<"), std::string::npos);  // legend
-  EXPECT_NE(svg.find(">rolling<"), std::string::npos);
+  EXPECT_NE(svg.find("after " + std::to_string(expected.cushion_hits) + " cushion"), std::string::npos)
+      << "the description gives the outcome";
   for (const auto& entry : fs::directory_iterator(scratch()))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
-TEST(SimulateSvg, ObstaclesAreDrawnAndAnOpenTableHasNoPockets) {
-  const fs::path blocked = scratch() / "blocked.svg";
+TEST(SimulateSvg, TheExtensionChoosesTheFormat) {
+  const fs::path png = scratch() / "one_rail.png";
+  const fs::path pdf = scratch() / "one_rail.PDF";
+  ASSERT_EQ(cueplan(one_rail_command("--svg '" + png.string() + "'"), "png").exit_code, 0);
+  ASSERT_EQ(cueplan(one_rail_command("--svg '" + pdf.string() + "'"), "pdf").exit_code, 0);
+  EXPECT_EQ(read_text(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(read_text(pdf).substr(0, 5), "%PDF-");
+  // Any other extension is refused before the shot is simulated.
+  const fs::path jpg = scratch() / "one_rail.jpg";
+  const ProcessResult run = cueplan(one_rail_command("--svg '" + jpg.string() + "'"), "jpg");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.out, "");
+  EXPECT_NE(run.err.find("--svg must name a .svg, .png or .pdf file"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(jpg));
+}
+
+TEST(SimulateSvg, ObstacleAndOpenTablesAreDrawn) {
+  const fs::path blocked = scratch() / "blocked.png";
   ASSERT_EQ(cueplan("simulate '" + problem_path("blocked_direct_route") +
                     "' --speed 1.5 --aim 0 --svg '" + blocked.string() + "'")
                 .exit_code,
             0);
-  EXPECT_EQ(count_of(read_text(blocked), "class=\"obstacle\""), 3u);
-
+  EXPECT_EQ(read_text(blocked).substr(1, 3), "PNG");
   const fs::path carom = scratch() / "carom.svg";
   ASSERT_EQ(cueplan("simulate '" + problem_path("carom_three_cushion") +
                     "' --speed 1.75 --aim 119.1 --json --svg '" + carom.string() + "'")
                 .exit_code,
             0);
-  const std::string svg = read_text(carom);
-  EXPECT_EQ(count_of(svg, "class=\"pocket\""), 0u);
-  EXPECT_EQ(count_of(svg, "class=\"obstacle\""), 0u);
-  EXPECT_EQ(count_of(svg, "class=\"cushion-contact\""), 3u);
+  EXPECT_NE(read_text(carom).find("<title>carom three-cushion"), std::string::npos);
 }
 
 // ---------------------------------------------------------------------------
@@ -412,7 +456,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"MissingBatchFile", "{one_rail} --batch /nonexistent/shots.csv", "--batch"},
         BadInput{"UnwritableSvg", "{one_rail} --speed 1 --aim 0 --svg /nonexistent/dir/x.svg",
                  "--svg"},
-        BadInput{"UnknownFlag", "{one_rail} --speed 1 --aim 0 --angle 3", "--angle"}),
+        BadInput{"UnknownFlag", "{one_rail} --speed 1 --aim 0 --angle 3", "--angle"},
+        BadInput{"NegativeSamples", "{one_rail} --speed 1 --aim 0 --samples -1", "--samples"},
+        BadInput{"NegativeNoise", "{one_rail} --speed 1 --aim 0 --samples 5 --noise -1",
+                 "--noise"},
+        BadInput{"NoiseWithoutSamples", "{one_rail} --speed 1 --aim 0 --noise 2", "--noise"},
+        BadInput{"BatchWithSamples", "{one_rail} --batch x.csv --samples 5", "--batch"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 TEST(SimulateBadInputMessage, SpeedMessageIsTheDocumentedOne) {

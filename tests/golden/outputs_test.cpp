@@ -91,12 +91,13 @@ void dump_shots(std::string& out) {
 }
 
 void dump_planned(std::string& out, const std::string& label, const planner::PlannedShot& s) {
-  out += fmt::format("  {}: {} {} {} {} -> {} {} {} miss {} cushions {} solves {} p {} family '{}' "
-                     "violations '{}'\n",
+  out += fmt::format("  {}: {} {} {} {} -> {} {} {} miss {} cushions {} solves {} p {} [{} {}] of {} "
+                     "family '{}' violations '{}'\n",
                      label, hex(s.shot.speed), hex(s.shot.aim_deg), hex(s.shot.topspin_k),
                      hex(s.shot.sidespin_k), physics::to_string(s.outcome), hex(s.final_position.x),
                      hex(s.final_position.y), hex(s.miss_distance), s.cushion_hits, s.solves,
-                     hex(s.success_probability), s.family, s.violations);
+                     hex(s.success_probability), hex(s.success.both.low), hex(s.success.both.high),
+                     s.success.both.samples, s.family, s.violations);
 }
 
 void dump_plans(std::string& out) {
@@ -110,7 +111,7 @@ void dump_plans(std::string& out) {
     const planner::PlanResult r = planner::plan(p, options);
     out += fmt::format("solve {}: {} evaluations {} local {} converged {} message '{}'\n", name,
                        planner::to_string(r.status), r.evaluations, r.local_searches,
-                       r.converged_searches, r.message.substr(0, r.message.find(" and lands")));
+                       r.converged_searches, r.message.substr(0, r.message.find(" and succeeds")));
     dump_planned(out, "best", r.best);
     for (const planner::PlannedShot& a : r.alternatives) dump_planned(out, "alternative", a);
   }

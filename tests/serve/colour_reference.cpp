@@ -4,7 +4,7 @@
 // stdin:  {"tolerance": m, "cells": [{"kind": ..., "miss_distance": m or null}, ...]}, the
 //         cells as /api/spinmap gives them (kind: at_rest_allowed_cushions, ...).
 // stdout: {"near_mm", "far_mm", "colours": ["#rrggbb", ...]}, one colour for each cell of
-//         kind at_rest_allowed_cushions, in order, from spin_map_drawing.hpp's
+//         kind at_rest_allowed_cushions, in order, from cueplan/draw/spin_map.hpp's
 //         miss_colour_scale and MissColourScale::colour.
 #include <cmath>
 #include <iostream>
@@ -14,7 +14,7 @@
 
 #include "cueplan/planner/spin_map.hpp"
 #include "cueplan/problems/problem.hpp"
-#include "spin_map_drawing.hpp"
+#include "cueplan/draw/spin_map.hpp"
 
 int main() {
   namespace phys = cueplan::physics;
@@ -41,11 +41,11 @@ int main() {
                                                            : INFINITY;
     map.points.push_back(p);
   }
-  const cueplan::cli::MissColourScale scale = cueplan::cli::miss_colour_scale(map, problem);
+  const cueplan::draw::MissColourScale scale = cueplan::draw::miss_colour_scale(map, problem);
   json colours = json::array();
   for (const cueplan::planner::SpinMapPoint& p : map.points)
-    if (cueplan::cli::classify(p, problem.limits) == cueplan::cli::SpinCellKind::distance)
-      colours.push_back(scale.colour(p.miss_distance));
+    if (cueplan::draw::classify(p, problem.limits) == cueplan::draw::SpinCellKind::distance)
+      colours.push_back(scale.colour(p.miss_distance).to_hex());
   std::cout << json{{"near_mm", scale.near_mm}, {"far_mm", scale.far_mm}, {"colours", colours}}
             << '\n';
   return 0;

@@ -5,7 +5,7 @@ Starts `cueplan serve` on a free port, loads the page at a laptop's size (1366 x
 plans a shipped example and checks that the stroke's words and its path appear, that the
 drawn path ends where the plan says the ball stops; draws the spin map and checks its
 colours against the command line's colour scale (computed by the C++ of
-spin_map_drawing.cpp, through serve_colour_reference); hovers cells and checks that each
+draw/src/spin_map.cpp, through serve_colour_reference); hovers cells and checks that each
 one's path is drawn and ends as far from the target as the map says, clicks one and
 checks that the stroke controls take its spin, plays it, moves the map's speed slider;
 drags the target with the mouse; moves the cue ball with the keyboard into a pocket and

@@ -255,6 +255,7 @@ function setStroke(shot) {
   $("aim").value = Math.round(1000 * shot.aim_deg) / 1000;
   const round = (v) => Math.round(1000 * v) / 1000;
   setTip({ right: round(shot.sidespin_k / SPIN_PER_TIP), up: round(shot.topspin_k / SPIN_PER_TIP) }, false);
+  $("tip-spin").textContent = `k_T = ${fixed(shot.topspin_k, 3)}, k_S = ${fixed(shot.sidespin_k, 3)}`;
   table.setAim(shot.aim_deg);
   state.strokeKnown = true;
   state.exactStroke = { speed: shot.speed, aim_deg: shot.aim_deg, topspin_k: shot.topspin_k,
@@ -333,6 +334,16 @@ function legendLine() {
   return p;
 }
 
+// A planned stroke's chance of success in words: the estimate with its 95 % interval
+// (`success.both`: it stops in the zone, and pots what the problem asks to be potted).
+function successText(a, r) {
+  if (!(r.options.samples > 0)) return "not estimated";
+  const s = a.success?.both;
+  if (!s) return `${fixed(100 * a.success_probability, 1)} %`;
+  return `${fixed(100 * s.p, 1)} % of ${s.samples} noisy strokes (95 % interval ` +
+    `${fixed(100 * s.low, 1)} to ${fixed(100 * s.high, 1)} %)`;
+}
+
 function renderPlan() {
   const r = state.plan;
   const shown = state.shown === 0 ? r : r.alternatives[state.shown - 1];
@@ -360,7 +371,7 @@ function renderPlan() {
     ["stops", shown.final_position ? `x = ${fixed(shown.final_position[0], 3)} m, y = ${fixed(shown.final_position[1], 3)} m (${shown.outcome})` : "-"],
     ["miss", shown.miss_distance === null ? "none: not at rest on the table"
       : `${fixed(1000 * shown.miss_distance, 1)} mm (tolerance ${fixed(1000 * r.tolerance, 0)} mm)`],
-    ["success", r.options.samples > 0 ? `${fixed(100 * shown.success_probability, 1)} % of ${r.options.samples} noisy strokes` : "not estimated"],
+    ["success", successText(shown, r)],
     ["route", shown.route_names.length ? `${cushionWord(shown.route_names.length)}: ${shown.route_names.join(", ")}` : "no cushion"],
     ["search", `${r.evaluations} shot simulations in ${fixed(r.time_s, 3)} s (seed ${r.options.seed}, ${r.options.method} impacts)`],
   ]));

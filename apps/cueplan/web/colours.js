@@ -1,4 +1,4 @@
-// The spin map's colours, as `cueplan spinmap` draws them (spin_map_drawing.cpp:
+// The spin map's colours, as `cueplan spinmap` draws them (draw/src/spin_map.cpp:
 // MissColourScale, classify, cell_colour): a log scale of the miss distance from the
 // problem's tolerance to the next 1-2-5 value at or above the largest coloured miss,
 // viridis with the target's end bright; fixed colours for the other outcomes.

@@ -50,6 +50,35 @@ struct NoiseModel {
   physics::Validation validate() const;
 };
 
+// A probability estimated from Monte Carlo strokes: successes / samples with its 95 %
+// Wilson score interval (Wilson 1927), which stays inside [0, 1] and is not empty at
+// 0 or all successes. With no samples, p = 0 and the interval is [0, 1].
+struct Estimate {
+  double p = 0.0;
+  double low = 0.0;
+  double high = 1.0;
+  int samples = 0;    // strokes counted
+  int successes = 0;  // of those, strokes that succeeded
+
+  bool operator==(const Estimate&) const = default;
+};
+// successes of samples (0 <= successes <= samples) as an Estimate.
+Estimate wilson_estimate(int successes, int samples);
+
+// A stroke's chance of success under the execution noise, condition by condition.
+// P(pot) counts the strokes that pot the named ball (a pot problem only); P(position)
+// is the chance that the cue ball also stops in the landing zone given that it potted
+// (its samples are the potting strokes), or, without a pot, simply of stopping there;
+// P(both) is the chance of the whole shot: pot and position together (without a pot,
+// equal to position).
+struct Success {
+  std::optional<Estimate> pot;
+  Estimate position;
+  Estimate both;
+
+  bool operator==(const Success&) const = default;
+};
+
 // The answer depends on the options and the seed only, not on `threads`, as long as
 // the evaluation budget (not max_time_s) is what ends each stage.
 //
@@ -63,8 +92,11 @@ struct PlannerOptions {
   GlobalMethod global = GlobalMethod::crs2;
   LocalMethod local = LocalMethod::bobyqa;
   int max_evaluations = 2000;  // shot simulations for the search, global and local together
-  // Wall-clock budget (s) for the search and the robust polish; the exact
-  // verification and the success probabilities of the returned shots come after it.
+  // Wall-clock budget (s) for the whole plan: search, exact verification, the side
+  // variants, the success probabilities and the robust polish. Once it has passed,
+  // nothing new is started; a Monte Carlo estimate it cuts short counts the strokes
+  // it did simulate (Estimate::samples), and only the reported strokes are still
+  // described (one simulation each).
   double max_time_s = 10.0;
   int local_starts = 6;        // distinct global candidates (best of their families) polished locally
   double global_share = 0.5;   // fraction of max_evaluations the global stage may use, (0, 1)
@@ -78,6 +110,11 @@ struct PlannerOptions {
   int robust_search_samples = 32;    // robust mode: common noise draws per objective call
   int robust_max_evaluations = 20000;  // robust mode: shot simulations for the robust polish
   int max_alternatives = 5;          // distinct solutions returned besides the best
+  // Stop polishing at the first pass in which a stroke lands and skip the side
+  // variants: the quickest landing stroke rather than the coach's choice among many
+  // (the route planner's steering uses it). By default the polish goes on through the
+  // families the budget allows and every solved stroke with side is tried without it.
+  bool stop_at_first_solution = false;
   physics::SimulationOptions simulation;  // impact method (and table), accuracy, events
   // When `simulation` searches with the impact table, re-simulate the returned shots
   // with the exact method (accuracy 1e-9) and report those outcomes; a shot the exact
@@ -124,7 +161,8 @@ struct PlannedShot {
   bool within_limits = false;        // speed, spin, aim and cushion-count limits
   bool rigid_limit_exceeded = false;
   double max_cushion_normal_speed = 0.0;  // m/s
-  double success_probability = 0.0;  // of stopping within the tolerance under the noise
+  Success success;                   // under the noise; all zero samples when not estimated
+  double success_probability = 0.0;  // success.both.p: of succeeding under the noise
   Family family_key;                 // the way it plays the shot
   std::string family;                // family_key in words, e.g. "2 cushions (y = 0, x = L), follow, right spin"
   bool solves = false;               // within the tolerance and breaks no constraint
@@ -155,6 +193,13 @@ PlanResult plan(const problems::Problem& problem, const PlannerOptions& options)
 double success_probability(const problems::Problem& problem, const physics::Shot& shot,
                            const NoiseModel& noise, int samples, uint64_t seed,
                            const physics::SimulationOptions& simulation);
+
+// The chance of success of `shot` with its intervals, from `samples` noisy strokes
+// (the same draws as success_probability for the same seed: common random numbers).
+// Deterministic for a seed.
+Success estimate_success(const problems::Problem& problem, const physics::Shot& shot,
+                         const NoiseModel& noise, int samples, uint64_t seed,
+                         const physics::SimulationOptions& simulation);
 
 // Simulates a stroke on the problem's scene and describes it as a PlannedShot
 // (success_probability left at 0).
