@@ -13,6 +13,8 @@ packages=(
   libcairo2-dev libpango1.0-dev fonts-dejavu-core
   librsvg2-dev libxml2-dev poppler-utils
   clang libclang-rt-14-dev
+  libcpp-httplib-dev
+  chromium chromium-driver python3-selenium
 )
 
 missing=()

@@ -12,6 +12,7 @@
 #include "figures_command.hpp"
 #include "rebound_command.hpp"
 #include "route_command.hpp"
+#include "serve_command.hpp"
 #include "simulate_command.hpp"
 #include "solve_command.hpp"
 #include "spinmap_command.hpp"
@@ -86,9 +87,10 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   SolveCommand solve(app);
   SpinmapCommand spinmap(app);
   RouteCommand route(app);
+  ServeCommand serve(app);
   const std::vector<CommandEntry> commands = {entry(rebound), entry(collide), entry(simulate),
-                                              entry(figures), entry(solve), entry(spinmap),
-                                              entry(route)};
+                                              entry(figures), entry(solve),   entry(spinmap),
+                                              entry(route),   entry(serve)};
 
   try {
     app.parse(argc, argv);

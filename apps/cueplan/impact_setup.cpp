@@ -87,14 +87,22 @@ int prepare_impact_table(const char* command, const phys::Scene& scene,
   }
   if (!note.empty()) err << command << ": " << note << '\n';
   *table = std::move(*acquired);
-  options->table = table;
+  if (std::string note_on_method = use_impact_table(*table, scene, accuracy_given, options);
+      !note_on_method.empty())
+    err << command << ": " << note_on_method << '\n';
+  return kExitOk;
+}
+
+std::string use_impact_table(const phys::ImpactTable& table, const phys::Scene& scene,
+                             bool accuracy_given, phys::SimulationOptions* options) {
+  options->table = &table;
   // Asked for the table without an accuracy: the table's own measured error is it.
-  const double measured = table->measured_error().max_state_relative;
+  const double measured = table.measured_error().max_state_relative;
   if (!accuracy_given) options->impact_accuracy = std::max(options->impact_accuracy, measured);
   if (phys::chosen_impact_method(scene, *options) != phys::ImpactMethod::table)
-    err << command << ": the table's measured error " << number(measured) << " is above --accuracy "
-        << number(options->impact_accuracy) << "; cushion impacts use the exact method\n";
-  return kExitOk;
+    return "the table's measured error " + number(measured) + " is above --accuracy " +
+           number(options->impact_accuracy) + "; cushion impacts use the exact method";
+  return {};
 }
 
 }  // namespace cueplan::cli

@@ -48,4 +48,11 @@ int prepare_impact_table(const char* command, const physics::Scene& scene,
                          physics::ImpactTable* table, physics::SimulationOptions* options,
                          std::ostream& err, bool* built = nullptr);
 
+// Points options->table at `table` (which must outlive its use). Unless the accuracy
+// was given, the table's own measured error becomes the accuracy. Returns a note when
+// cushion impacts will still use the exact method (the table's measured error is above
+// the accuracy asked for), else empty. prepare_impact_table ends with it.
+std::string use_impact_table(const physics::ImpactTable& table, const physics::Scene& scene,
+                             bool accuracy_given, physics::SimulationOptions* options);
+
 }  // namespace cueplan::cli

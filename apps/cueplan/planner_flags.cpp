@@ -136,6 +136,8 @@ std::string read_planner_options(const PlannerArgs& args, int threads,
   return e ? message_in(*e, kPlannerFlags) : std::string();
 }
 
+std::span<const FieldName> planner_flag_names() { return kPlannerFlags; }
+
 std::string noise_text(const plan::NoiseModel& noise) {
   return "aim " + number(noise.aim_deg * noise.scale) + " deg, speed " +
          number(noise.speed * noise.scale) + " m/s, tip offset " +

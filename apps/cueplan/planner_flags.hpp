@@ -4,7 +4,10 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
+
+#include "field_names.hpp"
 
 #include "cueplan/planner/planner.hpp"
 
@@ -39,6 +42,10 @@ void add_planner_flags(CLI::App& command, PlannerArgs* args, const char* group);
 std::string read_planner_options(const PlannerArgs& args, int threads,
                                  const physics::SimulationOptions& simulation,
                                  planner::PlannerOptions* options);
+
+// PlannerOptions' fields and the flags that set them, by which read_planner_options
+// names its errors ({"max_time_s"} -> "--max-time", {"noise", "scale"} -> "--noise", ...).
+std::span<const FieldName> planner_flag_names();
 
 // The planner's noise model in words, e.g. "aim 0.125 deg, speed 0.075 m/s, tip 0.5 mm
 // (standard deviations, --noise 1)".

@@ -138,12 +138,6 @@ Counts counts_of(const plan::SpinMap& map, const prob::Limits& limits) {
   return c;
 }
 
-// Where the speed and aim came from.
-struct StrokeSource {
-  bool planned = false;
-  plan::PlanResult plan;  // when planned
-};
-
 std::string source_text(const StrokeSource& source) {
   if (!source.planned) return "given by --speed and --aim";
   const phys::Shot& s = source.plan.best.shot;
@@ -209,9 +203,23 @@ ordered_json point_json(const plan::SpinMapPoint& p) {
           {"cushion_hits", p.cushion_hits}};
 }
 
-void write_json(std::ostream& out, const prob::Problem& problem, const plan::SpinMap& map,
-                const StrokeSource& source, const phys::SimulationOptions& simulation,
-                const std::string& file, PictureFormat format, double seconds) {
+// The outcome class of a grid spin by the name `outcomes` counts it under.
+const char* outcome_key(SpinCellKind kind) {
+  switch (kind) {
+    case SpinCellKind::distance: return "at_rest_allowed_cushions";
+    case SpinCellKind::wrong_cushions: return "at_rest_other_cushions";
+    case SpinCellKind::pocketed: return "pocketed";
+    case SpinCellKind::obstacle: return "hit_obstacle";
+    case SpinCellKind::no_result: return "no_outcome";
+  }
+  return "no_outcome";
+}
+
+}  // namespace
+
+ordered_json spinmap_json(const prob::Problem& problem, const plan::SpinMap& map,
+                          const StrokeSource& source, const phys::SimulationOptions& simulation,
+                          const std::string& picture_file, double seconds) {
   ordered_json j;
   j["problem"] = {{"name", problem.name}, {"source", problem.source}};
   j["speed"] = map.speed;
@@ -246,8 +254,11 @@ void write_json(std::ostream& out, const prob::Problem& problem, const plan::Spi
   j["target"] = {problem.target.x, problem.target.y};
   j["tolerance"] = problem.tolerance;
   j["method"] = phys::to_string(phys::chosen_impact_method(problem.scene, simulation));
-  j["out"] = file;
-  j["format"] = draw::to_string(format);
+  if (!picture_file.empty()) {
+    j["out"] = picture_file;
+    if (const std::optional<PictureFormat> format = format_of(picture_file))
+      j["format"] = draw::to_string(*format);
+  }
   j["time_s"] = seconds;
   j["units"] = {{"speed", "m/s"},
                 {"aim_deg", "deg from +x, counter-clockwise"},
@@ -259,8 +270,22 @@ void write_json(std::ostream& out, const prob::Problem& problem, const plan::Spi
                 {"miss_distance", "m"},
                 {"tolerance", "m"},
                 {"time_s", "s"}};
-  out << j.dump(2) << '\n';
+  return j;
 }
+
+ordered_json spinmap_cells_json(const prob::Problem& problem, const plan::SpinMap& map) {
+  ordered_json cells = ordered_json::array();
+  for (const plan::SpinMapPoint& p : map.points) {
+    ordered_json cell = point_json(p);
+    cell["outcome"] = phys::to_string(p.outcome);
+    cell["kind"] = outcome_key(classify(p, problem.limits));
+    cell["lands"] = p.lands;
+    cells.push_back(std::move(cell));
+  }
+  return cells;
+}
+
+namespace {
 
 draw::SpinMapScene picture_of(const prob::Problem& problem, const plan::SpinMap& map,
                               const StrokeSource& source,
@@ -478,7 +503,7 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
 
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
   if (args_.json)
-    write_json(out, problem, map, source, simulation, args_.out_file, format, seconds);
+    out << spinmap_json(problem, map, source, simulation, args_.out_file, seconds).dump(2) << '\n';
   else
     write_text(out, problem, map, source, simulation, args_.out_file, seconds);
   return out ? kExitOk : kExitFailed;

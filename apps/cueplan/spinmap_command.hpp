@@ -7,8 +7,12 @@
 
 #include <cmath>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/spin_map.hpp"
+#include "cueplan/problems/problem.hpp"
 #include "impact_setup.hpp"
 #include "planner_flags.hpp"
 
@@ -59,5 +63,27 @@ class SpinmapCommand {
   CLI::App* command_ = nullptr;
   SpinmapArgs args_;
 };
+
+// Where a spin map's speed and aim came from: given, or the planner's best stroke.
+struct StrokeSource {
+  bool planned = false;
+  planner::PlanResult plan;  // when planned
+};
+
+// What `cueplan spinmap --json` prints for a map (picture_file: the picture written, whose
+// extension gives `format`; empty for none, and then `out` and `format` are left out).
+// `seconds`: the wall-clock time of the whole command.
+nlohmann::ordered_json spinmap_json(const problems::Problem& problem, const planner::SpinMap& map,
+                                    const StrokeSource& source,
+                                    const physics::SimulationOptions& simulation,
+                                    const std::string& picture_file, double seconds);
+
+// Every grid spin of the map, row by row as map.points, each as `landing_spins` gives
+// one (topspin_k, sidespin_k, tip_right, tip_up, final_position, miss_distance,
+// cushion_hits) with its `outcome` (the simulator's status), `kind` (the `outcomes` key
+// it is counted under: at_rest_allowed_cushions, at_rest_other_cushions, pocketed,
+// hit_obstacle, no_outcome) and `lands`: what a picture of the whole disc needs.
+nlohmann::ordered_json spinmap_cells_json(const problems::Problem& problem,
+                                          const planner::SpinMap& map);
 
 }  // namespace cueplan::cli

@@ -1,0 +1,572 @@
+#include "serve_api.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <span>
+#include <utility>
+
+#include "cueplan/physics/shot.hpp"
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/spin_map.hpp"
+#include "field_names.hpp"
+#include "impact_setup.hpp"
+#include "planner_flags.hpp"
+#include "simulate_batch.hpp"
+#include "simulate_command.hpp"
+#include "solve_command.hpp"
+#include "spinmap_command.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+namespace phys = cueplan::physics;
+namespace plan = cueplan::planner;
+namespace prob = cueplan::problems;
+using nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kRetryWhileTableIsMade = 5;  // s
+const int kDefaultGrid = SpinmapArgs{}.grid;
+
+// An option of a request, the command-line flag it stands for, and its JSON type.
+enum class Kind { number, whole, seed, boolean, text };
+struct OptionName {
+  const char* key;   // in the request's `options`
+  const char* flag;  // the command's flag, as its checks name it
+  Kind kind;
+};
+
+// The options `solve` takes (and `spinmap`, whose planner runs without speed and aim).
+constexpr OptionName kPlannerOptions[] = {
+    {"global", "--global", Kind::text},
+    {"local", "--local", Kind::text},
+    {"max_evaluations", "--max-evaluations", Kind::whole},
+    {"max_time", "--max-time", Kind::number},
+    {"starts", "--starts", Kind::whole},
+    {"seed", "--seed", Kind::seed},
+    {"noise", "--noise", Kind::number},
+    {"robust", "--robust", Kind::boolean},
+    {"samples", "--samples", Kind::whole},
+    {"enforce_rigid_limit", "--enforce-rigid-limit", Kind::boolean},
+    {"alternatives", "--alternatives", Kind::whole},
+    {"method", "--method", Kind::text},
+    {"accuracy", "--accuracy", Kind::number},
+};
+// The options `simulate` takes.
+constexpr OptionName kSimulateOptions[] = {
+    {"method", "--method", Kind::text},
+    {"accuracy", "--accuracy", Kind::number},
+    {"max_events", "--max-events", Kind::whole},
+};
+
+// A request that stops short: the reply to send.
+struct Stop {
+  ApiReply reply;
+};
+
+Stop bad(const std::string& field, const std::string& message) {
+  return {error_reply(400, message, field)};
+}
+
+std::string listed(std::span<const OptionName> options) {
+  std::string text;
+  for (const OptionName& o : options) text += (text.empty() ? "" : ", ") + std::string(o.key);
+  return text;
+}
+
+std::string listed(std::initializer_list<const char*> keys) {
+  std::string text;
+  for (const char* k : keys) text += (text.empty() ? "" : ", ") + std::string(k);
+  return text;
+}
+
+std::string dotted(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+// The body as a JSON object.
+ordered_json parse_body(std::string_view body) {
+  ordered_json j;
+  try {
+    j = ordered_json::parse(body);
+  } catch (const ordered_json::parse_error& e) {
+    std::string what = e.what();
+    // "[json.exception.parse_error.101] parse error at line 1, ..." without the tag.
+    if (const size_t tag = what.find("] "); what.rfind("[json.exception", 0) == 0 &&
+                                             tag != std::string::npos)
+      what.erase(0, tag + 2);
+    throw bad("", "the request body is not JSON: " + what);
+  }
+  if (!j.is_object())
+    throw bad("", "the request body must be a JSON object, such as {\"problem\": {...}}");
+  return j;
+}
+
+// Every key of `object` is one of `keys`; otherwise the first that is not.
+void check_keys(const ordered_json& object, std::initializer_list<const char*> keys,
+                const std::string& prefix) {
+  for (const auto& [key, value] : object.items())
+    if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; }))
+      throw bad(dotted(prefix, key), "unknown field '" + dotted(prefix, key) + "'; " +
+                                         (prefix.empty() ? "the request's" : prefix + "'s") +
+                                         " fields are " + listed(keys));
+}
+
+void check_option_keys(const ordered_json& options, std::span<const OptionName> known) {
+  for (const auto& [key, value] : options.items())
+    if (std::none_of(known.begin(), known.end(), [&](const OptionName& o) { return key == o.key; }))
+      throw bad("options." + key,
+                "unknown field 'options." + key + "'; the options are " + listed(known));
+}
+
+// The command line's message with its flags named as the request's options; the field
+// is the option whose flag leads the message.
+Stop flag_error(std::string message, std::span<const OptionName> options) {
+  std::string field;
+  for (const OptionName& o : options)
+    if (message.rfind(std::string(o.flag) + " ", 0) == 0) field = std::string("options.") + o.key;
+  for (const OptionName& o : options)
+    for (size_t at = message.find(o.flag); at != std::string::npos;
+         at = message.find(o.flag, at + 1)) {
+      // Whole flags only: --max-time in "--max-time must ...", not a prefix of a longer one.
+      const size_t end = at + std::string_view(o.flag).size();
+      if (end < message.size() && (std::isalnum(static_cast<unsigned char>(message[end])) ||
+                                   message[end] == '-'))
+        continue;
+      message.replace(at, end - at, std::string("options.") + o.key);
+    }
+  return bad(field, message);
+}
+
+// Typed reads of one field; each names the field when the value has the wrong type.
+const ordered_json* member(const ordered_json& object, const char* key) {
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+double read_number(const ordered_json& v, const std::string& field, const char* unit) {
+  if (!v.is_number())
+    throw bad(field, field + " must be a number" + (unit ? std::string(" (") + unit + ")" : "") +
+                         ", got " + v.dump());
+  return v.get<double>();
+}
+
+int read_whole(const ordered_json& v, const std::string& field) {
+  const double x = v.is_number() ? v.get<double>() : NAN;
+  if (!v.is_number() || x != std::floor(x) || std::abs(x) > std::numeric_limits<int>::max())
+    throw bad(field, field + " must be a whole number (at most 2147483647 either way), got " +
+                         v.dump());
+  return static_cast<int>(x);
+}
+
+uint64_t read_seed(const ordered_json& v, const std::string& field) {
+  if (v.is_number_unsigned()) return v.get<uint64_t>();
+  if (v.is_number_integer() && v.get<int64_t>() >= 0) return static_cast<uint64_t>(v.get<int64_t>());
+  throw bad(field, field + " must be a whole number from 0 to 18446744073709551615, got " + v.dump());
+}
+
+bool read_bool(const ordered_json& v, const std::string& field) {
+  if (!v.is_boolean()) throw bad(field, field + " must be true or false, got " + v.dump());
+  return v.get<bool>();
+}
+
+std::string read_text(const ordered_json& v, const std::string& field) {
+  if (!v.is_string()) throw bad(field, field + " must be a string, got " + v.dump());
+  return v.get<std::string>();
+}
+
+void at_most(int value, int most, const std::string& field) {
+  if (value > most)
+    throw bad(field, field + " must be at most " + std::to_string(most) + " on this server, got " +
+                         std::to_string(value));
+}
+
+const ordered_json& options_of(const ordered_json& request) {
+  static const ordered_json kNone = ordered_json::object();
+  const ordered_json* options = member(request, "options");
+  if (options == nullptr) return kNone;
+  if (!options->is_object())
+    throw bad("options", "options must be an object, such as {\"seed\": 7}, got " + options->dump());
+  return *options;
+}
+
+prob::Problem read_problem(const ordered_json& request) {
+  const ordered_json* value = member(request, "problem");
+  if (value == nullptr)
+    throw bad("problem", "problem is required: the problem file's fields as an object, such as "
+                         "{\"cue_ball\": [0.8, 0.5], \"target\": [2.6, 1.2]}");
+  ProblemFromJson loaded = problem_from_json(*value, "problem");
+  if (!loaded.problem) throw bad(loaded.error.field, loaded.error.message);
+  return std::move(*loaded.problem);
+}
+
+// The planner's and the impact method's options of a request, read and checked as the
+// command line reads its flags.
+struct SearchInputs {
+  PlannerArgs planner;
+  ImpactArgs impact;
+  bool accuracy_given = false;
+  bool time_clamped = false;
+};
+
+SearchInputs read_search_options(const ordered_json& options, const std::string& default_method,
+                                 const ApiLimits& limits) {
+  check_option_keys(options, kPlannerOptions);
+  SearchInputs in;
+  in.impact.method = default_method;
+  for (const auto& [key, v] : options.items()) {
+    const std::string field = "options." + key;
+    if (key == "global") in.planner.global = read_text(v, field);
+    if (key == "local") in.planner.local = read_text(v, field);
+    if (key == "max_evaluations") {
+      in.planner.max_evaluations = read_whole(v, field);
+      at_most(in.planner.max_evaluations, limits.max_evaluations, field);
+    }
+    if (key == "max_time") {
+      const double t = read_number(v, field, "s");
+      in.time_clamped = t > limits.max_time_s;
+      in.planner.max_time_s = std::min(t, limits.max_time_s);
+    }
+    if (key == "starts") {
+      in.planner.starts = read_whole(v, field);
+      at_most(in.planner.starts, limits.max_starts, field);
+    }
+    if (key == "seed") in.planner.seed = read_seed(v, field);
+    if (key == "noise") in.planner.noise = read_number(v, field, nullptr);
+    if (key == "robust") in.planner.robust = read_bool(v, field);
+    if (key == "samples") {
+      in.planner.samples = read_whole(v, field);
+      at_most(in.planner.samples, limits.max_samples, field);
+    }
+    if (key == "enforce_rigid_limit") in.planner.enforce_rigid_limit = read_bool(v, field);
+    if (key == "alternatives") {
+      in.planner.alternatives = read_whole(v, field);
+      at_most(in.planner.alternatives, limits.max_alternatives, field);
+    }
+    if (key == "method") in.impact.method = read_text(v, field);
+    if (key == "accuracy") {
+      in.impact.accuracy = read_number(v, field, nullptr);
+      in.accuracy_given = true;
+    }
+  }
+  // The planner's time budget never exceeds the server's.
+  in.planner.max_time_s = std::min(in.planner.max_time_s, limits.max_time_s);
+  return in;
+}
+
+phys::SimulationOptions read_impact(const ImpactArgs& impact) {
+  phys::SimulationOptions simulation;
+  if (std::string why = read_impact_options(impact, &simulation); !why.empty())
+    throw flag_error(why, kPlannerOptions);
+  return simulation;
+}
+
+plan::PlannerOptions read_planner(const SearchInputs& in,
+                                  const phys::SimulationOptions& simulation) {
+  plan::PlannerOptions options;
+  // One thread a request: the server's concurrency is its worker pool. The answer does
+  // not depend on it (planner.hpp) while the evaluation budget ends the search.
+  if (std::string why = read_planner_options(in.planner, 1, simulation, &options); !why.empty())
+    throw flag_error(why, kPlannerOptions);
+  return options;
+}
+
+// A library's field (planner options, spin map options, the shot, the problem) as the
+// request names it.
+std::string request_field(const phys::FieldPath& path) {
+  // The planner's, through the flags the command line names them by.
+  const std::string flag = name_of(path, planner_flag_names());
+  for (const OptionName& o : kPlannerOptions)
+    if (flag == o.flag) return std::string("options.") + o.key;
+  static const std::initializer_list<FieldName> kNames = {
+      {{"max_events"}, "options.max_events"},
+      {{"speed"}, "speed"},
+      {{"aim_deg"}, "aim_deg"},
+      {{"grid"}, "grid"},
+      {{"shot", "speed"}, "stroke.speed"},
+      {{"shot", "aim_deg"}, "stroke.aim_deg"},
+      {{"shot", "topspin_k"}, "stroke.topspin_k"},
+      {{"shot", "sidespin_k"}, "stroke.sidespin_k"},
+  };
+  const std::string named = name_of(path, kNames);
+  if (named != path.text()) return named;
+  static const char* kProblemFields[] = {"scene", "cue_ball", "target", "tolerance", "limits"};
+  const auto* head = path.empty() ? nullptr : std::get_if<std::string>(&path.steps()[0]);
+  if (head && std::find(std::begin(kProblemFields), std::end(kProblemFields), *head) !=
+                  std::end(kProblemFields))
+    return "problem." + prob::file_field(path);
+  return path.text();
+}
+
+Stop library_error(const std::optional<phys::ValidationError>& error, const std::string& message) {
+  if (!error) return bad("", message);
+  const std::string field = request_field(error->field);
+  return bad(field, error->message(field, error->other ? request_field(*error->other) : ""));
+}
+
+ordered_json time_note(const SearchInputs& in, const ApiLimits& limits) {
+  return in.time_clamped ? ordered_json(fmt::format("options.max_time was clamped to this "
+                                                    "server's maximum, {:g} s",
+                                                    limits.max_time_s))
+                         : ordered_json();
+}
+
+}  // namespace
+
+ApiReply error_reply(int status, const std::string& message, const std::string& field) {
+  ApiReply r;
+  r.status = status;
+  r.body = {{"error", message}, {"field", field.empty() ? ordered_json() : ordered_json(field)}};
+  return r;
+}
+
+Api::Api(ApiLimits limits, std::string default_method, ImpactTableStore* tables,
+         std::vector<Example> examples)
+    : limits_(limits),
+      default_method_(std::move(default_method)),
+      tables_(tables),
+      examples_(std::move(examples)) {}
+
+namespace {
+
+// With the table method: the store's table for the problem's cushion, set in
+// *simulation (and kept alive by *keep); or the reply when there is none yet.
+void attach_table(ImpactTableStore& tables, const prob::Problem& problem, bool accuracy_given,
+                  phys::SimulationOptions* simulation,
+                  std::shared_ptr<const phys::ImpactTable>* keep) {
+  if (simulation->impact_method != phys::ImpactMethod::table) return;
+  const ImpactTableStore::Lookup found = tables.find(problem.scene.ball_and_cushion);
+  if (found.state == ImpactTableStore::State::ready) {
+    *keep = found.table;
+    use_impact_table(**keep, problem.scene, accuracy_given, simulation);
+    return;
+  }
+  const std::string instead = "; or ask for \"options\": {\"method\": \"exact\"}";
+  if (found.refused) throw bad("options.method", found.message + instead);
+  if (found.state == ImpactTableStore::State::failed)
+    throw Stop{error_reply(500, "the impact table for this problem's cushion: " + found.message +
+                                    instead,
+                           "options.method")};
+  Stop wait{error_reply(503,
+                        "the impact table for this problem's cushion is not ready yet (" +
+                            found.message + "); ask again in a few seconds" + instead,
+                        "options.method")};
+  wait.reply.body["impact_table"] = to_string(found.state);
+  wait.reply.body["retry_after_s"] = kRetryWhileTableIsMade;
+  wait.reply.retry_after_s = kRetryWhileTableIsMade;
+  throw wait;
+}
+
+// Runs one endpoint: a Stop thrown anywhere inside becomes its reply.
+template <class Body>
+ApiReply answer(Body&& body) {
+  try {
+    return body();
+  } catch (const Stop& stop) {
+    return stop.reply;
+  }
+}
+
+}  // namespace
+
+ApiReply Api::solve(std::string_view body) const {
+  return answer([&] {
+    const ordered_json request = parse_body(body);
+    check_keys(request, {"problem", "options"}, "");
+    const SearchInputs in = read_search_options(options_of(request), default_method_, limits_);
+    phys::SimulationOptions simulation = read_impact(in.impact);
+    plan::PlannerOptions options = read_planner(in, simulation);
+    const prob::Problem problem = read_problem(request);
+
+    std::shared_ptr<const phys::ImpactTable> table;
+    attach_table(*tables_, problem, in.accuracy_given, &simulation, &table);
+    options.simulation = simulation;
+
+    const plan::PlanResult result = plan::plan(problem, options);
+    if (result.status == plan::PlanStatus::invalid_input)
+      throw library_error(result.error, result.message);
+    ApiReply reply;
+    reply.body = solve_json(problem, options, result, "");
+    if (in.time_clamped) reply.body["note"] = time_note(in, limits_);
+    return reply;
+  });
+}
+
+ApiReply Api::simulate(std::string_view body) const {
+  return answer([&] {
+    const ordered_json request = parse_body(body);
+    check_keys(request, {"problem", "stroke", "options"}, "");
+    const ordered_json& options = options_of(request);
+    check_option_keys(options, kSimulateOptions);
+    ImpactArgs impact;
+    impact.method = kShotImpactMethod;
+    phys::SimulationOptions simulation;
+    bool accuracy_given = false;
+    for (const auto& [key, v] : options.items()) {
+      const std::string field = "options." + key;
+      if (key == "method") impact.method = read_text(v, field);
+      if (key == "accuracy") {
+        impact.accuracy = read_number(v, field, nullptr);
+        accuracy_given = true;
+      }
+      if (key == "max_events") {
+        simulation.max_events = read_whole(v, field);
+        if (simulation.max_events < 1)
+          throw bad(field, field + " must be at least 1, got " + v.dump());
+        at_most(simulation.max_events, limits_.max_events, field);
+      }
+    }
+    const int max_events = simulation.max_events;
+    if (std::string why = read_impact_options(impact, &simulation); !why.empty())
+      throw flag_error(why, kSimulateOptions);
+    simulation.max_events = max_events;
+
+    const ordered_json* stroke = member(request, "stroke");
+    if (stroke == nullptr || !stroke->is_object())
+      throw bad("stroke", "stroke is required: an object {speed (m/s), aim_deg (deg from +x), "
+                          "topspin_k, sidespin_k}");
+    check_keys(*stroke, {"speed", "aim_deg", "topspin_k", "sidespin_k"}, "stroke");
+    phys::Shot shot{NAN, NAN, 0.0, 0.0};
+    for (const char* required : {"speed", "aim_deg"})
+      if (member(*stroke, required) == nullptr)
+        throw bad(std::string("stroke.") + required,
+                  std::string("stroke.") + required + " is required (" +
+                      (std::string(required) == "speed" ? "m/s" : "deg from +x") + ")");
+    shot.speed = read_number(stroke->at("speed"), "stroke.speed", "m/s");
+    shot.aim_deg = read_number(stroke->at("aim_deg"), "stroke.aim_deg", "deg");
+    if (const ordered_json* k = member(*stroke, "topspin_k"))
+      shot.topspin_k = read_number(*k, "stroke.topspin_k", nullptr);
+    if (const ordered_json* k = member(*stroke, "sidespin_k"))
+      shot.sidespin_k = read_number(*k, "stroke.sidespin_k", nullptr);
+    constexpr ShotNames kStrokeNames = {"stroke.speed", "stroke.aim_deg", "stroke.topspin_k",
+                                        "stroke.sidespin_k"};
+    if (std::string why = check_shot_inputs(shot, kStrokeNames); !why.empty()) {
+      std::string field = "stroke";
+      for (const char* name : {kStrokeNames.speed, kStrokeNames.aim, kStrokeNames.topspin,
+                               kStrokeNames.sidespin})
+        if (why.rfind(std::string(name) + " ", 0) == 0) field = name;
+      throw bad(field, why);
+    }
+    const prob::Problem problem = read_problem(request);
+
+    std::shared_ptr<const phys::ImpactTable> table;
+    attach_table(*tables_, problem, accuracy_given, &simulation, &table);
+    const phys::ShotResult result =
+        phys::simulate(problem.scene, problem.cue_ball, shot, simulation);
+    if (result.status == phys::ShotStatus::invalid_input)
+      throw library_error(result.error, result.message);
+    ApiReply reply;
+    reply.body = simulate_json(problem, shot, simulation, result, "");
+    return reply;
+  });
+}
+
+ApiReply Api::spinmap(std::string_view body) const {
+  const Clock::time_point started = Clock::now();
+  return answer([&] {
+    const ordered_json request = parse_body(body);
+    check_keys(request, {"problem", "speed", "aim_deg", "grid", "options"}, "");
+    const ordered_json* speed = member(request, "speed");
+    const ordered_json* aim = member(request, "aim_deg");
+    if ((speed == nullptr) != (aim == nullptr))
+      throw bad(speed ? "aim_deg" : "speed",
+                std::string(speed ? "aim_deg" : "speed") + " is required with " +
+                    (speed ? "speed" : "aim_deg") +
+                    ": give both, or neither to use the planner's best stroke");
+    const bool stroke_given = speed != nullptr;
+    double v = NAN, aim_deg = NAN;
+    if (stroke_given) {
+      v = read_number(*speed, "speed", "m/s");
+      aim_deg = read_number(*aim, "aim_deg", "deg");
+      if (!std::isfinite(v) || !(v > 0.0))
+        throw bad("speed", "speed must be finite and above 0 (m/s), got " + speed->dump());
+      if (!std::isfinite(aim_deg))
+        throw bad("aim_deg", "aim_deg must be finite (deg), got " + aim->dump());
+    }
+    int grid = kDefaultGrid;
+    if (const ordered_json* g = member(request, "grid")) {
+      grid = read_whole(*g, "grid");
+      if (grid < 3 || grid > limits_.max_grid)
+        throw bad("grid", fmt::format("grid must be 3 to {} points across the disc on this "
+                                      "server, got {}",
+                                      limits_.max_grid, grid));
+    }
+    const SearchInputs in = read_search_options(options_of(request), default_method_, limits_);
+    phys::SimulationOptions simulation = read_impact(in.impact);
+    plan::PlannerOptions planner_options;
+    if (!stroke_given) planner_options = read_planner(in, simulation);
+    const prob::Problem problem = read_problem(request);
+
+    std::shared_ptr<const phys::ImpactTable> table;
+    attach_table(*tables_, problem, in.accuracy_given, &simulation, &table);
+    planner_options.simulation = simulation;
+
+    StrokeSource source;
+    if (!stroke_given) {
+      source.planned = true;
+      source.plan = plan::plan(problem, planner_options);
+      if (source.plan.status == plan::PlanStatus::invalid_input)
+        throw library_error(source.plan.error, source.plan.message);
+      v = source.plan.best.shot.speed;
+      aim_deg = source.plan.best.shot.aim_deg;
+    }
+    plan::SpinMapOptions map_options;
+    map_options.grid = grid;
+    map_options.threads = 1;  // as solve: the worker pool is the server's concurrency
+    map_options.simulation = simulation;
+    const plan::SpinMap map = plan::spin_map(problem, v, aim_deg, map_options);
+    if (!map.message.empty()) throw library_error(map.error, map.message);
+    if (map.points.empty()) throw Stop{error_reply(422, "no spin lies within the disc", "grid")};
+
+    const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+    ApiReply reply;
+    reply.body = spinmap_json(problem, map, source, simulation, "", seconds);
+    reply.body["cells"] = spinmap_cells_json(problem, map);
+    if (in.time_clamped && !stroke_given) reply.body["note"] = time_note(in, limits_);
+    return reply;
+  });
+}
+
+ApiReply Api::examples() const {
+  ordered_json list = ordered_json::array();
+  for (const Example& e : examples_)
+    list.push_back({{"name", e.name},
+                    {"file", e.file},
+                    {"problem", e.problem},
+                    {"scene", scene_json(e.loaded)}});
+  ApiReply reply;
+  reply.body = {{"examples", list}};
+  return reply;
+}
+
+ApiReply Api::health(int workers, int busy) const {
+  ApiReply reply;
+  ordered_json tables = tables_->json();
+  bool ready = default_method_ != "table" || !tables.empty();
+  for (const ordered_json& t : tables) ready = ready && t["state"] == "ready";
+  reply.body = {{"status", "ok"},
+                {"version", CUEPLAN_VERSION},
+                {"workers", workers},
+                {"busy", busy},
+                {"default_method", default_method_},
+                {"impact_tables_ready", ready},
+                {"impact_tables", tables},
+                {"limits",
+                 {{"max_time_s", limits_.max_time_s},
+                  {"max_evaluations", limits_.max_evaluations},
+                  {"max_starts", limits_.max_starts},
+                  {"max_samples", limits_.max_samples},
+                  {"max_alternatives", limits_.max_alternatives},
+                  {"max_grid", limits_.max_grid},
+                  {"max_events", limits_.max_events}}}};
+  return reply;
+}
+
+}  // namespace cueplan::cli

@@ -1,0 +1,184 @@
+#include "serve_command.hpp"
+
+#include <pthread.h>
+#include <signal.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <ostream>
+#include <thread>
+
+#include "cueplan/physics/cushion_impact.hpp"
+#include "exit_codes.hpp"
+#include "serve_server.hpp"
+#include "table_cache.hpp"
+
+namespace cueplan::cli {
+namespace {
+
+constexpr const char* kCommandName = "cueplan serve";
+
+}  // namespace
+
+ServeCommand::ServeCommand(CLI::App& parent) {
+  command_ = parent.add_subcommand(
+      "serve",
+      "Serve the teaching page - set up a shot on the table, plan it, and see every spin that "
+      "lands on the target - and its JSON API on a local web server, until Ctrl-C.");
+  CLI::App& c = *command_;
+  c.add_option("--host", args_.host,
+               "Address to listen on. The default, loopback, keeps the server to this machine; "
+               "0.0.0.0 opens it to the network")
+      ->type_name("ADDRESS")
+      ->capture_default_str();
+  c.add_option("--port", args_.port, "TCP port, 0 to 65535; 0 picks a free one (printed)")
+      ->type_name("N")
+      ->capture_default_str();
+  c.add_option("--threads", args_.threads,
+               "Requests computed at once (the worker pool; each request runs on one thread); "
+               "0: one per core. A request that finds every worker busy is answered 503 at once")
+      ->type_name("N")
+      ->capture_default_str();
+  c.add_option("--method", args_.method,
+               "Cushion impacts of the searches (solve, spinmap) when a request names none: "
+               "table (as cueplan solve; the shipped problems' tables are loaded from the cache, "
+               "or built once in the background, about 30 s each on 2 cores) or exact")
+      ->type_name("table|exact")
+      ->capture_default_str();
+  c.add_option("--table-cache", args_.table_cache,
+               "Directory of the cached impact tables (default: $CUEPLAN_CACHE_DIR, else "
+               "$XDG_CACHE_HOME/cueplan, else ~/.cache/cueplan)")
+      ->type_name("DIR");
+  c.add_option("--max-time", args_.max_time_s,
+               "The longest planner search a request gets (s), > 0: a request's options.max_time "
+               "is clamped to it")
+      ->type_name("S")
+      ->capture_default_str();
+  c.add_option("--max-grid", args_.max_grid,
+               "The finest spin map a request may ask for, 3 to 1001 points across the disc")
+      ->type_name("N")
+      ->capture_default_str();
+  c.add_flag("--quiet", args_.quiet, "No line on stderr for each request");
+  c.footer(
+      "API (JSON in, JSON out; the answers are the commands' --json objects): POST /api/solve "
+      "{problem, options}, POST /api/simulate {problem, stroke, options}, POST /api/spinmap "
+      "{problem, speed, aim_deg, grid, options}, GET /api/examples, GET /api/health. README.md, "
+      "'cueplan serve', shows each.\n"
+      "Exit codes: 0 stopped by Ctrl-C or SIGTERM, 1 could not listen, 2 bad flags.\n"
+      "Example: cueplan serve --port 8080, then open http://127.0.0.1:8080/");
+}
+
+bool ServeCommand::selected() const { return command_->parsed(); }
+
+std::string ServeCommand::check() const {
+  if (args_.host.empty()) return "--host must name an address, such as 127.0.0.1";
+  if (args_.port < 0 || args_.port > 65535)
+    return "--port must be 0 to 65535, got " + std::to_string(args_.port);
+  if (args_.threads < 0)
+    return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
+  if (args_.method != "table" && args_.method != "exact")
+    return "--method must be table or exact, got '" + args_.method + "'";
+  if (!std::isfinite(args_.max_time_s) || !(args_.max_time_s > 0.0))
+    return fmt::format("--max-time must be positive and finite (s), got {}", args_.max_time_s);
+  if (args_.max_grid < 3 || args_.max_grid > 1001)
+    return "--max-grid must be 3 to 1001, got " + std::to_string(args_.max_grid);
+  return {};
+}
+
+int ServeCommand::validate(std::ostream& err) const {
+  const std::string why = check();
+  return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
+}
+
+int ServeCommand::run(std::ostream& out, std::ostream& err) const {
+  if (std::string why = check(); !why.empty()) return usage_error(err, kCommandName, why);
+
+  // SIGINT and SIGTERM go to one thread that waits for them (every thread started from
+  // here on inherits the mask), which stops the server; a second one ends the process.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  sigset_t previous;
+  pthread_sigmask(SIG_BLOCK, &signals, &previous);
+
+  std::mutex err_mutex;
+  const auto note = [&](const std::string& line) {
+    std::lock_guard<std::mutex> lock(err_mutex);
+    err << kCommandName << ": " << line << std::endl;
+  };
+
+  ServerOptions options;
+  options.host = args_.host;
+  options.port = args_.port;
+  options.workers = args_.threads;
+  options.default_method = args_.method;
+  options.limits.max_time_s = args_.max_time_s;
+  options.limits.max_grid = args_.max_grid;
+  options.tables.cache_dir =
+      args_.table_cache.empty() ? default_table_cache_dir() : args_.table_cache;
+  options.tables.on_note = note;
+  if (!args_.quiet) options.log = note;
+
+  int code = kExitOk;
+  {
+    WebServer server(options);
+    if (std::string why = server.bind(); !why.empty()) {
+      note(why);
+      pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+      return kExitFailed;
+    }
+    out << kCommandName << ": open " << server.url() << " in a browser (Ctrl-C stops the server)"
+        << std::endl;
+    if (!is_loopback(args_.host))
+      note("listening on " + args_.host + ": other machines can reach this server");
+    note(fmt::format("{} worker{}; searches use the {} impact method{}", server.workers(),
+                     server.workers() == 1 ? "" : "s", args_.method,
+                     args_.method == "table"
+                         ? " (tables load or build in the background; /api/health tells when "
+                           "they are ready)"
+                         : ""));
+
+    std::atomic<bool> finished{false};
+    std::thread waiter([&] {
+      for (int received = 0;;) {
+        int signal = 0;
+        if (sigwait(&signals, &signal) != 0 || finished) return;
+        if (++received == 1) {
+          note(std::string("stopping (") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+               "): requests being computed finish first; a second signal ends it at once");
+          server.stop();
+        } else {
+          note("stopped at once");
+          std::_Exit(kExitFailed);
+        }
+      }
+    });
+    if (!server.run()) {
+      note("the server stopped: it could not accept connections");
+      code = kExitFailed;
+    }
+    finished = true;
+    pthread_kill(waiter.native_handle(), SIGTERM);  // wakes the waiter if no signal came
+    waiter.join();
+
+    // A table build cannot be interrupted; rather than wait for it, leave now (the cache
+    // is written through a temporary file and a rename, so nothing half-made is kept).
+    if (server.tables().working()) {
+      note("stopped (an impact table was still being made; it is made again at the next start)");
+      out.flush();
+      err.flush();
+      std::_Exit(code);
+    }
+  }
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  note("stopped");
+  return code;
+}
+
+}  // namespace cueplan::cli

@@ -1,0 +1,656 @@
+// The page of `cueplan serve`: pick an example, move the balls and the target, plan the
+// stroke, play a stroke of your own, and see every spin that lands ("what spin lands
+// here?"). The page keeps the problem as the problem file's fields (`problem`, sent with
+// every request) and draws from the resolved `scene` /api/examples gives with it.
+
+import { ApiError, call } from "./api.js";
+import { SpinDisc } from "./spin_disc.js";
+import { TableView } from "./table_view.js";
+import { TipDisc } from "./tip_disc.js";
+
+const $ = (id) => document.getElementById(id);
+const SPIN_PER_TIP = 2.5;       // k = 2.5 d / R
+const MAP_DEBOUNCE_MS = 250;    // a speed slider redraws the map once it rests this long
+const HOVER_DEBOUNCE_MS = 40;
+const DEFAULT_EXAMPLE = "one_rail_position.yaml";
+const SPIN_INTRO = document.getElementById("spin-intro").textContent;
+
+const state = {
+  examples: [],
+  example: null,
+  problem: null,   // the request's problem: the example's fields, balls where they are now
+  scene: null,     // what to draw (the example's resolved scene), positions kept in step
+  version: 0,      // counts changes to the problem, so stale answers are dropped
+  plan: null,      // /api/solve's answer
+  planShots: [],   // /api/simulate's answers for the plan's best and alternatives
+  shown: 0,        // which of planShots is drawn in full (0: the best)
+  map: null,       // /api/spinmap's answer
+  strokeKnown: false,  // speed and aim set by a plan or by hand (else the map plans first)
+  mapAbort: null,
+  hoverAbort: null,
+  shots: new Map(),  // simulate answers by request, for hovering back and forth
+  selected: null,    // the simulate answer of the spin map cell last clicked
+  exactStroke: null, // the last stroke put in the controls, unrounded
+};
+
+const fixed = (v, digits) => (Number.isFinite(v) ? v.toFixed(digits) : "-");
+const tipWords = (right, up) =>
+  `${fixed(Math.abs(right), 3)} R ${right < 0 ? "left" : "right"} of centre, ` +
+  `${fixed(Math.abs(up), 3)} R ${up < 0 ? "below" : "above"} centre`;
+const cushionWord = (n) => `${n} cushion${n === 1 ? "" : "s"}`;
+
+function allowedCushions(limits) {
+  const [lo, hi] = limits.cushions;
+  return lo === hi ? ` after ${cushionWord(lo)}` : ` after ${lo} to ${hi} cushions`;
+}
+
+// ---------------------------------------------------------------------------
+// Views
+
+const table = new TableView($("table"), {
+  onMove: moveBall,
+  onPointer: (text) => ($("pointer").textContent = text),
+});
+const tip = new TipDisc($("tip-disc"), { onChange: (offset) => setTip(offset, true) });
+const disc = new SpinDisc($("spin-disc"), $("spin-legend"), { onHover: hoverCell, onSelect: selectCell });
+
+// ---------------------------------------------------------------------------
+// Busy, errors
+
+let busyTimer = null;
+function busy(text) {
+  const started = performance.now();
+  $("busy").hidden = false;
+  const tick = () => ($("busy-text").textContent =
+    `${text} ${((performance.now() - started) / 1000).toFixed(1)} s`);
+  tick();
+  clearInterval(busyTimer);
+  busyTimer = setInterval(tick, 100);
+  for (const id of ["plan", "play", "spinmap"]) $(id).disabled = true;
+  return (waitText) => {
+    if (waitText) text = waitText;
+  };
+}
+function idle() {
+  clearInterval(busyTimer);
+  $("busy").hidden = true;
+  for (const id of ["plan", "play", "spinmap"]) $(id).disabled = false;
+}
+
+function showError(e) {
+  const box = $("error");
+  box.replaceChildren();
+  const message = document.createElement("span");
+  message.textContent = e instanceof ApiError || e instanceof Error ? e.message : String(e);
+  box.appendChild(message);
+  if (e.field) {
+    const field = document.createElement("span");
+    field.className = "field-name";
+    field.textContent = ` (field: ${e.field})`;
+    box.appendChild(field);
+  }
+  box.hidden = false;
+  table.flag(e.field ?? null);
+}
+function clearError() {
+  $("error").hidden = true;
+  table.flag(null);
+}
+
+// Runs one request with the progress line shown; errors land in the error box.
+// What the progress line says while the server asks the page to come back (503).
+function waitWords(message, answer) {
+  if (!answer) return message;
+  if (answer.impact_table)
+    return "Waiting for the impact table of this cushion (made once; loading takes a second, " +
+      "a first build about 30 s)...";
+  return "The server is busy; asking again...";
+}
+
+async function task(text, work) {
+  clearError();
+  const say = busy(text);
+  try {
+    await work((message, answer) => say(waitWords(message, answer)));
+  } catch (e) {
+    if (!e.aborted) showError(e);
+  } finally {
+    idle();
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The problem and its balls
+
+function positions() {
+  const p = state.problem, s = state.scene;
+  return {
+    cue_ball: p.cue_ball,
+    target: p.target,
+    tolerance: s.tolerance,
+    obstacles: p.obstacles ?? [],
+    balls: p.balls,
+  };
+}
+
+function selectExample(index) {
+  const e = state.examples[index];
+  state.example = e;
+  state.map = null;
+  state.mapAbort?.abort();
+  $("spin-disc").toggleAttribute("hidden", true);
+  $("map-speed-field").hidden = true;
+  $("spin-legend").replaceChildren();
+  $("spin-cell").textContent = "";
+  $("spin-intro").textContent = SPIN_INTRO;
+  state.problem = structuredClone(e.problem);
+  state.scene = structuredClone(e.scene);
+  state.strokeKnown = false;
+  table.setScene(state.scene);
+  const limits = state.scene.limits;
+  tip.setLimit(limits.spin / SPIN_PER_TIP);
+  for (const id of ["speed-range", "map-speed-range"]) {
+    $(id).min = limits.speed[0];
+    $(id).max = limits.speed[1];
+  }
+  $("example-note").textContent =
+    `${e.file}: ${state.scene.kind} table ${fixed(state.scene.length, 3)} x ${fixed(state.scene.width, 3)} m, ` +
+    `target zone ${fixed(1000 * state.scene.tolerance, 0)} mm, ${allowedCushions(limits).trim()} allowed`;
+  fillPot();
+  changed();
+}
+
+// The pot's place: an object ball into a pocket, for problems that have object balls.
+function fillPot() {
+  const balls = state.problem.balls ?? [];
+  const pockets = state.scene.pockets;
+  const ball = $("pot-ball"), pocket = $("pot-pocket");
+  ball.replaceChildren(...(balls.length ? balls : [{ name: "none on this table" }]).map((b) => new Option(b.name)));
+  pocket.replaceChildren(...(pockets.length ? pockets.map((p) => p.name.replace("_", " "))
+    : ["no pockets on this table"]).map((name) => new Option(name)));
+  ball.disabled = pocket.disabled = balls.length === 0;
+  $("pot-note").textContent = balls.length
+    ? "Choose the ball to pot and its pocket."
+    : "This problem has no object balls: the plan leaves the cue ball on the target. Problems with object balls offer a pot here.";
+}
+
+// The problem changed: drop what was computed for the old one.
+function changed() {
+  state.version += 1;
+  state.plan = null;
+  state.planShots = [];
+  state.shots.clear();
+  state.selected = null;
+  state.mapAbort?.abort();
+  state.hoverAbort?.abort();
+  table.setPositions(positions());
+  table.setPaths([]);
+  $("result").hidden = true;
+  if (state.map) {
+    // The map follows the balls; until it has, it is shown faded.
+    $("spin-disc").classList.add("stale");
+    $("spin-cell").textContent = "The balls moved: the map is being drawn again for their new places.";
+    refreshMap();
+  }
+}
+
+function moveBall(kind, index, place, done) {
+  const p = state.problem;
+  if (kind === "target") p.target = place;
+  else if (kind === "cue_ball") p.cue_ball = place;
+  else if (kind === "obstacles") p.obstacles[index] = place;
+  else if (kind === "balls") p.balls[index].position = place;
+  if (!done) {
+    table.setPositions(positions());
+    table.setPaths([]);
+    return;
+  }
+  changed();
+  table.focusBall(kind, index);
+}
+
+// ---------------------------------------------------------------------------
+// The stroke controls
+
+// The stroke in the controls. While they still show the stroke a plan (or a spin map
+// cell) put there, its exact numbers: the controls round them for reading.
+function readStroke() {
+  const t = tip.offset;
+  const shown = {
+    speed: Number($("speed").value),
+    aim_deg: Number($("aim").value),
+    topspin_k: Math.round(1e6 * SPIN_PER_TIP * t.up) / 1e6,
+    sidespin_k: Math.round(1e6 * SPIN_PER_TIP * t.right) / 1e6,
+  };
+  const exact = state.exactStroke;
+  if (exact && JSON.stringify(rounded(exact)) === JSON.stringify(rounded(shown))) return { ...exact };
+  return shown;
+}
+
+// A stroke as the controls show it.
+function rounded(s) {
+  const r = (v) => Math.round(1000 * v) / 1000;
+  return [r(s.speed), r(s.aim_deg), r(s.topspin_k / SPIN_PER_TIP), r(s.sidespin_k / SPIN_PER_TIP)];
+}
+
+function setTip(offset, byHand) {
+  if (!byHand) tip.show(offset);
+  $("tip-right").value = offset.right;
+  $("tip-up").value = offset.up;
+  $("tip-spin").textContent =
+    `k_T = ${fixed(SPIN_PER_TIP * offset.up, 3)}, k_S = ${fixed(SPIN_PER_TIP * offset.right, 3)}`;
+}
+
+function setSpeed(speed) {
+  const v = Math.round(1000 * speed) / 1000;
+  $("speed").value = v;
+  $("speed-range").value = v;
+  $("map-speed-range").value = v;
+  $("map-speed").textContent = `${fixed(v, 2)} m/s`;
+}
+
+// Puts a shot {speed, aim_deg, topspin_k, sidespin_k} in the controls.
+function setStroke(shot) {
+  setSpeed(shot.speed);
+  $("aim").value = Math.round(1000 * shot.aim_deg) / 1000;
+  const round = (v) => Math.round(1000 * v) / 1000;
+  setTip({ right: round(shot.sidespin_k / SPIN_PER_TIP), up: round(shot.topspin_k / SPIN_PER_TIP) }, false);
+  $("tip-spin").textContent = `k_T = ${fixed(shot.topspin_k, 3)}, k_S = ${fixed(shot.sidespin_k, 3)}`;
+  table.setAim(shot.aim_deg);
+  state.strokeKnown = true;
+  state.exactStroke = { speed: shot.speed, aim_deg: shot.aim_deg, topspin_k: shot.topspin_k,
+    sidespin_k: shot.sidespin_k };
+}
+
+function plannerOptions() {
+  const options = {};
+  const number = (id) => ($(id).value === "" ? undefined : Number($(id).value));
+  if (number("seed") !== undefined) options.seed = number("seed");
+  if (number("max-time") !== undefined) options.max_time = number("max-time");
+  if (number("noise") !== undefined) options.noise = number("noise");
+  return options;
+}
+
+// ---------------------------------------------------------------------------
+// Simulating one stroke (the plan's, your own, a spin map cell's)
+
+async function simulate(stroke, method, { signal, onWait } = {}) {
+  const body = { problem: state.problem, stroke, options: { method } };
+  const key = JSON.stringify([state.version, stroke, method]);
+  if (state.shots.has(key)) return state.shots.get(key);
+  const shot = await call("/api/simulate", body, { signal, onWait });
+  state.shots.set(key, shot);
+  return shot;
+}
+
+function outcomeText(shot) {
+  if (shot.status === "rest") {
+    const miss = shot.miss_distance;
+    return `stops at x = ${fixed(shot.final_position[0], 3)} m, y = ${fixed(shot.final_position[1], 3)} m ` +
+      `after ${cushionWord(shot.cushion_hits)}, ${fixed(1000 * miss, 1)} mm from the target ` +
+      `(${shot.in_target_zone ? "inside" : "outside"} the ${fixed(1000 * shot.tolerance, 0)} mm zone)`;
+  }
+  if (shot.status === "pocketed") return `is pocketed after ${cushionWord(shot.cushion_hits)}`;
+  if (shot.status === "hit_obstacle") return `stops against an obstacle ball after ${cushionWord(shot.cushion_hits)}`;
+  return `gives no outcome (${shot.status}: ${shot.message})`;
+}
+
+// ---------------------------------------------------------------------------
+// Plan
+
+function drawPlan() {
+  const paths = state.planShots.map((shot, i) => ({ shot, style: i === state.shown ? "main" : "faint" }));
+  // The one drawn in full goes last, on top.
+  paths.push(paths.splice(state.shown, 1)[0]);
+  table.setPaths(paths.filter(Boolean));
+}
+
+function dl(rows) {
+  const list = document.createElement("dl");
+  for (const [term, value] of rows) {
+    const dt = document.createElement("dt");
+    dt.textContent = term;
+    const dd = document.createElement("dd");
+    dd.textContent = value;
+    list.append(dt, dd);
+  }
+  return list;
+}
+
+function legendLine() {
+  const p = document.createElement("p");
+  for (const [cls, words] of [["sliding", "sliding"], ["rolling", "rolling"], ["faint", "other ways (alternatives)"]]) {
+    const item = document.createElement("span");
+    item.className = "legend-line";
+    const sw = document.createElement("span");
+    sw.className = `swatch ${cls}`;
+    item.append(sw, document.createTextNode(words));
+    p.appendChild(item);
+  }
+  const note = document.createElement("span");
+  note.className = "legend-line";
+  note.textContent = "numbered dots: cushion contacts; dashed ball: where it stops";
+  p.appendChild(note);
+  return p;
+}
+
+// A planned stroke's chance of success in words: the estimate with its 95 % interval
+// (`success.both`: it stops in the zone, and pots what the problem asks to be potted).
+function successText(a, r) {
+  if (!(r.options.samples > 0)) return "not estimated";
+  const s = a.success?.both;
+  if (!s) return `${fixed(100 * a.success_probability, 1)} %`;
+  return `${fixed(100 * s.p, 1)} % of ${s.samples} noisy strokes (95 % interval ` +
+    `${fixed(100 * s.low, 1)} to ${fixed(100 * s.high, 1)} %)`;
+}
+
+function renderPlan() {
+  const r = state.plan;
+  const shown = state.shown === 0 ? r : r.alternatives[state.shown - 1];
+  const box = $("result");
+  box.replaceChildren();
+  const words = document.createElement("p");
+  words.className = "words";
+  const head = document.createElement("span");
+  head.className = r.status === "solved" ? "status-solved" : "status-other";
+  head.textContent = ({ solved: "Solved", no_solution_found: "No solution found",
+    budget_exhausted: "Budget exhausted" }[r.status] ?? r.status) + ": ";
+  const stroke = document.createElement("span");
+  stroke.id = "stroke-words";
+  stroke.textContent = `${shown.stroke}, aim ${fixed(shown.shot.aim_deg, 2)} deg` +
+    (state.shown ? ` (alternative ${state.shown})` : "");
+  words.append(head, stroke);
+  const message = document.createElement("p");
+  message.className = "note";
+  message.textContent = r.message;
+  const s = shown.shot;
+  box.append(words, message, dl([
+    ["speed", `${fixed(s.speed, 3)} m/s`],
+    ["aim", `${fixed(s.aim_deg, 2)} deg`],
+    ["tip offset", `${tipWords(shown.tip_offset.right, shown.tip_offset.up)} (k_T = ${fixed(s.topspin_k, 3)}, k_S = ${fixed(s.sidespin_k, 3)})`],
+    ["stops", shown.final_position ? `x = ${fixed(shown.final_position[0], 3)} m, y = ${fixed(shown.final_position[1], 3)} m (${shown.outcome})` : "-"],
+    ["miss", shown.miss_distance === null ? "none: not at rest on the table"
+      : `${fixed(1000 * shown.miss_distance, 1)} mm (tolerance ${fixed(1000 * r.tolerance, 0)} mm)`],
+    ["success", successText(shown, r)],
+    ["route", shown.route_names.length ? `${cushionWord(shown.route_names.length)}: ${shown.route_names.join(", ")}` : "no cushion"],
+    ["search", `${r.evaluations} shot simulations in ${fixed(r.time_s, 3)} s (seed ${r.options.seed}, ${r.options.method} impacts)`],
+  ]));
+
+  if (r.alternatives.length) {
+    const t = document.createElement("table");
+    const caption = document.createElement("caption");
+    caption.className = "visually-hidden";
+    caption.textContent = "The plan and the other ways to play it";
+    t.appendChild(caption);
+    const header = t.insertRow();
+    for (const [text, num] of [["#", false], ["stroke", false], ["V (m/s)", true], ["aim (deg)", true],
+      ["miss (mm)", true], ["success (%)", true], ["route", false], ["", false]]) {
+      const th = document.createElement("th");
+      th.textContent = text;
+      if (num) th.className = "num";
+      header.appendChild(th);
+    }
+    [r, ...r.alternatives].forEach((a, i) => {
+      const row = t.insertRow();
+      if (i === state.shown) row.className = "shown";
+      const cells = [i === 0 ? "plan" : String(i), a.stroke, fixed(a.shot.speed, 3), fixed(a.shot.aim_deg, 2),
+        a.miss_distance === null ? "-" : fixed(1000 * a.miss_distance, 1),
+        r.options.samples > 0 ? fixed(100 * a.success_probability, 1) : "-",
+        a.route_names.length ? a.route_names.join(", ") : "none"];
+      cells.forEach((text, c) => {
+        const td = row.insertCell();
+        td.textContent = text;
+        if (c >= 2 && c <= 5) td.className = "num";
+        if (c === 1) td.className = "stroke";
+      });
+      const show = document.createElement("button");
+      show.type = "button";
+      show.className = "link";
+      show.textContent = i === state.shown ? "shown" : "show";
+      show.setAttribute("aria-label", `show ${i === 0 ? "the plan" : `alternative ${i}`} on the table`);
+      show.onclick = () => {
+        state.shown = i;
+        setStroke(a.shot);
+        drawPlan();
+        renderPlan();
+      };
+      row.insertCell().appendChild(show);
+    });
+    box.appendChild(t);
+  }
+  box.appendChild(legendLine());
+  box.hidden = false;
+}
+
+async function plan() {
+  const version = state.version;
+  const options = plannerOptions();
+  await task(`Planning (search up to ${options.max_time ?? 10} s)...`, async (wait) => {
+    const r = await call("/api/solve", { problem: state.problem, options }, { onWait: wait });
+    if (version !== state.version) return;
+    state.plan = r;
+    state.shown = 0;
+    setStroke(r.shot);
+    // Paths, one stroke after another (the worker pool is small): the best first.
+    wait("Drawing the paths...");
+    state.planShots = [];
+    for (const a of [r, ...r.alternatives]) {
+      state.planShots.push(await simulate(a.shot, a.impact_method, { onWait: wait }));
+      if (version !== state.version) return;
+      drawPlan();
+    }
+    renderPlan();
+    if (state.map) refreshMap();
+  });
+}
+
+// ---------------------------------------------------------------------------
+// Play a stroke of your own
+
+async function play() {
+  const stroke = readStroke();
+  state.strokeKnown = true;
+  table.setAim(stroke.aim_deg);
+  await task("Simulating...", async (wait) => {
+    const shot = await simulate(stroke, "exact", { onWait: wait });
+    table.setPaths([{ shot, style: "main" }]);
+    const box = $("result");
+    box.replaceChildren();
+    const words = document.createElement("p");
+    words.className = "words";
+    words.id = "stroke-words";
+    words.textContent = `Your stroke ${outcomeText(shot)}.`;
+    const t = tip.offset;
+    box.append(words, dl([
+      ["stroke", `${fixed(stroke.speed, 3)} m/s at aim ${fixed(stroke.aim_deg, 2)} deg, tip ${tipWords(t.right, t.up)}`],
+      ["solves the problem", shot.reaches_target ? "yes" : "no"],
+      ["limits", shot.within_limits ? "within the problem's limits" : shot.limits_message],
+      ["duration", `${fixed(shot.duration, 2)} s`],
+      ["impacts", `${shot.method} method`],
+    ]), legendLine());
+    box.hidden = false;
+  });
+}
+
+// ---------------------------------------------------------------------------
+// What spin lands here?
+
+async function requestMap() {
+  state.mapAbort?.abort();
+  const abort = new AbortController();
+  state.mapAbort = abort;
+  const body = { problem: state.problem, grid: Number($("grid").value), options: plannerOptions() };
+  if (state.strokeKnown) {
+    const s = readStroke();
+    body.speed = s.speed;
+    body.aim_deg = s.aim_deg;
+  }
+  const version = state.version;
+  await task(state.strokeKnown ? "Simulating every spin..." : "Planning the stroke, then every spin...",
+    async (wait) => {
+      let map;
+      try {
+        map = await call("/api/spinmap", body, { signal: abort.signal, onWait: wait });
+      } catch (e) {
+        if (state.map && !e.aborted)
+          $("spin-cell").textContent = "The map (faded) is for the balls' previous places: " +
+            "this problem has no map until the error is mended.";
+        throw e;
+      }
+      if (version !== state.version) return;
+      showMap(map);
+    });
+}
+
+function showMap(map) {
+  state.map = map;
+  if (map.stroke_source === "planner") setStroke(map.planner.shot);
+  // Ring the planned spin when the plan's speed and aim are the map's.
+  let planned = map.stroke_source === "planner" ? map.planner.shot : null;
+  const best = state.planShots.length ? state.plan : null;
+  if (!planned && best && Math.abs(best.shot.speed - map.speed) < 1e-9 &&
+      Math.abs(best.shot.aim_deg - map.aim_deg) < 1e-9)
+    planned = best.shot;
+  $("spin-intro").textContent =
+    `At ${fixed(map.speed, 3)} m/s and aim ${fixed(map.aim_deg, 2)} deg, ${map.landing} of ${map.points} spins ` +
+    `stop within ${fixed(1000 * map.tolerance, 0)} mm of the target${allowedCushions(state.scene.limits)}. ` +
+    "Hover or click a cell to see that spin's path.";
+  $("spin-disc").toggleAttribute("hidden", false);
+  $("map-speed-field").hidden = false;
+  $("map-speed").textContent = `${fixed(map.speed, 2)} m/s`;
+  disc.draw(map, { planned, cushions: allowedCushions(state.scene.limits) });
+  $("spin-disc").classList.remove("stale");
+  $("spin-cell").textContent = "";
+}
+
+let mapTimer = null;
+function refreshMap() {
+  clearTimeout(mapTimer);
+  mapTimer = setTimeout(requestMap, MAP_DEBOUNCE_MS);
+}
+
+function cellText(cell) {
+  const where = cell.kind === "pocketed" ? "is pocketed"
+    : cell.kind === "hit_obstacle" ? "stops against an obstacle ball"
+    : cell.kind === "no_outcome" ? "gives no outcome"
+    : `stops ${fixed(1000 * cell.miss_distance, 1)} mm from the target after ${cushionWord(cell.cushion_hits)}` +
+      (cell.kind === "at_rest_other_cushions" ? " (a cushion count the problem does not allow)" : "") +
+      (cell.lands ? ": lands" : "");
+  return `Tip ${tipWords(cell.tip_right, cell.tip_up)} (k_T = ${fixed(cell.topspin_k, 3)}, ` +
+    `k_S = ${fixed(cell.sidespin_k, 3)}) ${where}.`;
+}
+
+const cellStroke = (cell) => ({ speed: state.map.speed, aim_deg: state.map.aim_deg,
+  topspin_k: cell.topspin_k, sidespin_k: cell.sidespin_k });
+
+let hoverTimer = null;
+function hoverCell(cell) {
+  clearTimeout(hoverTimer);
+  if (!cell) {
+    $("spin-cell").textContent = "";
+    if (state.planShots.length) drawPlan();
+    else table.setPaths(state.selected ? [{ shot: state.selected, style: "main" }] : []);
+    return;
+  }
+  $("spin-cell").textContent = cellText(cell);
+  hoverTimer = setTimeout(async () => {
+    state.hoverAbort?.abort();
+    const abort = new AbortController();
+    state.hoverAbort = abort;
+    try {
+      const shot = await simulate(cellStroke(cell), state.map.method, { signal: abort.signal, retries: 3 });
+      const behind = state.planShots.length ? [{ shot: state.planShots[state.shown], style: "faint" }] : [];
+      table.setPaths([...behind, { shot, style: "hover" }]);
+    } catch (e) {
+      if (!e.aborted) showError(e);
+    }
+  }, HOVER_DEBOUNCE_MS);
+}
+
+async function selectCell(cell) {
+  setStroke(cellStroke(cell));
+  $("spin-cell").textContent = cellText(cell);
+  await task("Simulating...", async (wait) => {
+    const shot = await simulate(cellStroke(cell), state.map.method, { onWait: wait });
+    state.selected = shot;
+    table.setPaths([{ shot, style: "main" }]);
+  });
+}
+
+// ---------------------------------------------------------------------------
+// Health: the workers and the impact tables
+
+async function pollHealth() {
+  const line = $("health");
+  try {
+    const h = await call("/api/health");
+    const tables = h.impact_tables;
+    const ready = tables.filter((t) => t.state === "ready").length;
+    line.className = "health" + (h.impact_tables_ready ? "" : " warn");
+    line.textContent = `Server ${h.version}: ${h.workers} worker${h.workers === 1 ? "" : "s"}, ` +
+      (h.default_method === "table"
+        ? h.impact_tables_ready ? `impact tables ready (${ready})`
+          : `impact tables: ${ready} of ${tables.length} ready, ${tables.find((t) => t.state !== "ready")?.note ?? ""}`
+        : `${h.default_method} impacts`);
+    if (!h.impact_tables_ready) setTimeout(pollHealth, 2000);
+  } catch (e) {
+    line.className = "health bad";
+    line.textContent = e.message;
+    setTimeout(pollHealth, 5000);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Start
+
+function bindControls() {
+  $("example").onchange = (e) => selectExample(Number(e.target.value));
+  $("reset").onclick = () => selectExample(state.examples.indexOf(state.example));
+  $("plan").onclick = plan;
+  $("play").onclick = play;
+  $("spinmap").onclick = requestMap;
+  $("speed-range").oninput = (e) => {
+    setSpeed(Number(e.target.value));
+    state.strokeKnown = true;
+  };
+  $("speed").onchange = (e) => {
+    setSpeed(Number(e.target.value));
+    state.strokeKnown = true;
+  };
+  $("map-speed-range").oninput = (e) => {
+    setSpeed(Number(e.target.value));
+    state.strokeKnown = true;
+    refreshMap();
+  };
+  $("aim").onchange = (e) => {
+    table.setAim(Number(e.target.value));
+    state.strokeKnown = true;
+  };
+  const typedTip = () => {
+    const offset = { right: Number($("tip-right").value), up: Number($("tip-up").value) };
+    tip.choose(offset);
+  };
+  $("tip-right").onchange = typedTip;
+  $("tip-up").onchange = typedTip;
+  $("grid").onchange = () => state.map && refreshMap();
+}
+
+async function start() {
+  bindControls();
+  setTip({ right: 0, up: 0 }, false);
+  setSpeed(Number($("speed").value));
+  pollHealth();
+  try {
+    const { examples } = await call("/api/examples");
+    state.examples = examples;
+    const picker = $("example");
+    examples.forEach((e, i) => picker.appendChild(new Option(e.name, i)));
+    const first = Math.max(0, examples.findIndex((e) => e.file === DEFAULT_EXAMPLE));
+    picker.value = first;
+    selectExample(first);
+  } catch (e) {
+    showError(e);
+  }
+}
+
+start();

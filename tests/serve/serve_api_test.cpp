@@ -1,0 +1,813 @@
+// Tests of `cueplan serve`'s API against a server started inside the test on a free
+// port (port 0), over HTTP with cpp-httplib's client: every endpoint, its answers held
+// against the command line's `--json` for the same problem and options, bad input
+// answered 400 with the field named, oversize bodies 413, a busy pool 503, sixteen
+// concurrent solves; and the command itself as a process: its address, Ctrl-C.
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <latch>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/cli_test_support.hpp"
+#include "cueplan/problems/problem.hpp"
+#include "serve_api.hpp"
+#include "serve_problems.hpp"
+#include "serve_server.hpp"
+#include "serve_tables.hpp"
+#include "support/physics_checks.hpp"
+
+extern char** environ;
+
+namespace cli_test {
+
+const char* const kScratchName = "cueplan_serve_test_";
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace prob = cueplan::problems;
+using cueplan::cli::Api;
+using cueplan::cli::ApiReply;
+using cueplan::cli::ImpactTableStore;
+using cueplan::cli::ServerOptions;
+using cueplan::cli::WebServer;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+// ---------------------------------------------------------------------------
+// A server inside the test
+
+// Serves on a free loopback port from its own thread until destroyed.
+class TestServer {
+ public:
+  explicit TestServer(ServerOptions options = defaults()) : server_(std::move(options)) {
+    const std::string why = server_.bind();
+    EXPECT_EQ(why, "");
+    thread_ = std::thread([this] { server_.run(); });
+  }
+  ~TestServer() {
+    server_.stop();
+    thread_.join();
+  }
+  // Exact impacts (no table to wait for), a scratch table cache, two workers.
+  static ServerOptions defaults() {
+    ServerOptions o;
+    o.port = 0;
+    o.workers = 2;
+    o.default_method = "exact";
+    o.tables.cache_dir = (scratch() / "cache").string();
+    o.tables.options = cueplan::physics::test::tiny_table_options();
+    return o;
+  }
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", server_.port());
+    c.set_read_timeout(120);
+    c.set_connection_timeout(10);
+    return c;
+  }
+  int port() const { return server_.port(); }
+  WebServer& server() { return server_; }
+
+ private:
+  WebServer server_;
+  std::thread thread_;
+};
+
+struct Answer {
+  int status = 0;
+  json body;
+  std::string raw;
+  std::string retry_after;
+};
+
+Answer answer_of(const httplib::Result& r) {
+  Answer a;
+  if (!r) {
+    ADD_FAILURE() << "no answer: " << httplib::to_string(r.error());
+    return a;
+  }
+  a.status = r->status;
+  a.raw = r->body;
+  a.retry_after = r->get_header_value("Retry-After");
+  a.body = json::parse(r->body, nullptr, false);
+  return a;
+}
+
+Answer post(const TestServer& server, const std::string& path, const std::string& body,
+            const std::string& type = "application/json") {
+  httplib::Client c = server.client();
+  return answer_of(c.Post(path, body, type));
+}
+Answer post(const TestServer& server, const std::string& path, const json& body) {
+  return post(server, path, body.dump());
+}
+Answer get(const TestServer& server, const std::string& path) {
+  httplib::Client c = server.client();
+  return answer_of(c.Get(path));
+}
+
+// A shipped problem as /api/examples gives it.
+json example_problem(const TestServer& server, const std::string& file) {
+  const Answer a = get(server, "/api/examples");
+  for (const json& e : a.body["examples"])
+    if (e["file"] == file) return e["problem"];
+  ADD_FAILURE() << "no example " << file;
+  return json::object();
+}
+
+// The command line's --json for the same work, with what depends on where and when it
+// ran taken out: the time, the problem's source (a path or "request"), the picture.
+json comparable(json j) {
+  for (const char* key : {"time_s", "out", "format"}) j.erase(key);
+  if (j.contains("problem")) j["problem"].erase("source");
+  return j;
+}
+
+json cli_json(const std::string& args, const std::string& tag) {
+  const ProcessResult run = cueplan(args, tag);
+  EXPECT_LE(run.exit_code, 1) << args << "\n" << run.err;
+  json j = json::parse(run.out, nullptr, false);
+  EXPECT_FALSE(j.is_discarded()) << run.out << run.err;
+  return j;
+}
+
+// A quick, reproducible search, as the request's options and as the command's flags.
+json quick_options(uint64_t seed) {
+  return {{"method", "exact"},
+          {"max_evaluations", 1500},
+          {"samples", 50},
+          {"alternatives", 3},
+          {"seed", seed}};
+}
+std::string quick_flags(uint64_t seed) {
+  return "--method exact --max-evaluations 1500 --samples 50 --alternatives 3 --seed " +
+         std::to_string(seed);
+}
+
+void expect_error(const Answer& a, int status, const std::optional<std::string>& field,
+                  const std::string& words) {
+  EXPECT_EQ(a.status, status) << a.raw;
+  ASSERT_TRUE(a.body.is_object()) << a.raw;
+  ASSERT_TRUE(a.body.contains("error")) << a.raw;
+  if (field)
+    EXPECT_EQ(a.body["field"], *field) << a.raw;
+  else
+    EXPECT_TRUE(a.body["field"].is_null()) << a.raw;
+  EXPECT_NE(a.body["error"].get<std::string>().find(words), std::string::npos) << a.raw;
+}
+
+const json kSmallProblem = {{"cue_ball", {0.8, 0.5}}, {"target", {2.6, 1.2}}};
+
+// Two problems hold the same numbers (both read from the same decimal text, so exactly).
+void expect_same_problem(const prob::Problem& a, const prob::Problem& b) {
+  const cueplan::physics::Scene &s = a.scene, &t = b.scene;
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(s.length, t.length);
+  EXPECT_EQ(s.width, t.width);
+  const cueplan::physics::CushionParams &p = s.ball_and_cushion, &q = t.ball_and_cushion;
+  for (auto [x, y] : {std::pair{p.mass, q.mass}, {p.radius, q.radius}, {p.cushion_height, q.cushion_height},
+                      {p.mu_cushion, q.mu_cushion}, {p.mu_table, q.mu_table},
+                      {p.restitution, q.restitution}, {s.cloth.mu_slide, t.cloth.mu_slide},
+                      {s.cloth.mu_roll, t.cloth.mu_roll}, {s.cloth.mu_spin, t.cloth.mu_spin},
+                      {s.cloth.gravity, t.cloth.gravity}, {a.cue_ball.x, b.cue_ball.x},
+                      {a.cue_ball.y, b.cue_ball.y}, {a.target.x, b.target.x}, {a.target.y, b.target.y},
+                      {a.tolerance, b.tolerance}, {a.limits.speed_min, b.limits.speed_min},
+                      {a.limits.speed_max, b.limits.speed_max}, {a.limits.spin_max, b.limits.spin_max},
+                      {a.limits.aim.lo_deg, b.limits.aim.lo_deg}, {a.limits.aim.hi_deg, b.limits.aim.hi_deg}})
+    EXPECT_EQ(x, y);
+  EXPECT_EQ(a.limits.aim.mode, b.limits.aim.mode);
+  EXPECT_EQ(a.limits.cushions_min, b.limits.cushions_min);
+  EXPECT_EQ(a.limits.cushions_max, b.limits.cushions_max);
+  ASSERT_EQ(s.pockets.size(), t.pockets.size());
+  for (size_t i = 0; i < s.pockets.size(); ++i) {
+    EXPECT_EQ(s.pockets[i].centre.x, t.pockets[i].centre.x);
+    EXPECT_EQ(s.pockets[i].centre.y, t.pockets[i].centre.y);
+    EXPECT_EQ(s.pockets[i].radius, t.pockets[i].radius);
+  }
+  ASSERT_EQ(s.obstacles.size(), t.obstacles.size());
+  for (size_t i = 0; i < s.obstacles.size(); ++i) {
+    EXPECT_EQ(s.obstacles[i].x, t.obstacles[i].x);
+    EXPECT_EQ(s.obstacles[i].y, t.obstacles[i].y);
+  }
+  EXPECT_EQ(a.max_strokes, b.max_strokes);
+  EXPECT_EQ(a.time_budget_s, b.time_budget_s);
+}
+
+// ---------------------------------------------------------------------------
+// Endpoints
+
+TEST(ServeHealth, SaysTheServerIsUpWithItsWorkersAndLimits) {
+  TestServer server;
+  const Answer a = get(server, "/api/health");
+  ASSERT_EQ(a.status, 200) << a.raw;
+  EXPECT_EQ(a.body["status"], "ok");
+  EXPECT_EQ(a.body["workers"], 2);
+  EXPECT_EQ(a.body["busy"], 0);
+  EXPECT_EQ(a.body["default_method"], "exact");
+  EXPECT_EQ(a.body["impact_tables_ready"], true);
+  EXPECT_EQ(a.body["limits"]["max_body_bytes"], 256 * 1024);
+  EXPECT_EQ(a.body["limits"]["max_grid"], 61);
+}
+
+TEST(ServeExamples, AreTheShippedProblemsAndLoadAsTheirFilesDo) {
+  TestServer server;
+  const Answer a = get(server, "/api/examples");
+  ASSERT_EQ(a.status, 200);
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(CUEPLAN_PROBLEMS_DIR))
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path().filename().string());
+  ASSERT_EQ(a.body["examples"].size(), files.size());
+  for (const json& e : a.body["examples"]) {
+    const std::string file = e["file"];
+    SCOPED_TRACE(file);
+    // The JSON problem, read as a request's, is the file's problem field for field.
+    const prob::LoadResult from_file = prob::load_problem(problem_path(fs::path(file).stem()));
+    ASSERT_TRUE(from_file.ok()) << from_file.error;
+    const cueplan::cli::ProblemFromJson from_json =
+        cueplan::cli::problem_from_json(nlohmann::ordered_json::parse(e["problem"].dump()), "problem");
+    ASSERT_TRUE(from_json.problem) << from_json.error.message;
+    expect_same_problem(*from_json.problem, *from_file.problem);
+    EXPECT_EQ(e["name"], from_file.problem->name);
+    // The scene to draw is the loaded problem's.
+    const prob::Problem& p = *from_file.problem;
+    EXPECT_DOUBLE_EQ(e["scene"]["length"].get<double>(), p.scene.length);
+    EXPECT_DOUBLE_EQ(e["scene"]["width"].get<double>(), p.scene.width);
+    EXPECT_DOUBLE_EQ(e["scene"]["ball_radius"].get<double>(), p.scene.radius());
+    EXPECT_EQ(e["scene"]["pockets"].size(), p.scene.pockets.size());
+    EXPECT_DOUBLE_EQ(e["scene"]["cue_ball"][0].get<double>(), p.cue_ball.x);
+    EXPECT_DOUBLE_EQ(e["scene"]["target"][1].get<double>(), p.target.y);
+    EXPECT_DOUBLE_EQ(e["scene"]["tolerance"].get<double>(), p.tolerance);
+    EXPECT_EQ(e["scene"]["limits"]["cushions"][0], p.limits.cushions_min);
+    const std::string kind = e["scene"]["kind"];
+    EXPECT_EQ(kind, p.scene.pockets.empty() ? "carom" : p.scene.length > 3.0 ? "snooker" : "pool");
+  }
+}
+
+TEST(ServeSolve, AnswersAsTheCommandLineDoes) {
+  TestServer server;
+  const json problem = example_problem(server, "one_rail_position.yaml");
+  const Answer a = post(server, "/api/solve", json{{"problem", problem}, {"options", quick_options(3)}});
+  ASSERT_EQ(a.status, 200) << a.raw;
+  EXPECT_EQ(a.body["status"], "solved");
+  const json cli = cli_json("solve '" + problem_path("one_rail_position") + "' " + quick_flags(3) +
+                                " --json",
+                            "");
+  EXPECT_EQ(comparable(a.body), comparable(cli));
+  EXPECT_EQ(a.body["problem"]["source"], "request");
+}
+
+TEST(ServeSolve, ClampsTheSearchTimeToTheServersAndSaysSo) {
+  ServerOptions options = TestServer::defaults();
+  options.limits.max_time_s = 3.0;
+  TestServer server(options);
+  json opts = quick_options(1);
+  opts["max_time"] = 1000;
+  const Answer a = post(server, "/api/solve", json{{"problem", kSmallProblem}, {"options", opts}});
+  ASSERT_EQ(a.status, 200) << a.raw;
+  EXPECT_EQ(a.body["options"]["max_time_s"], 3.0);
+  EXPECT_NE(a.body["note"].get<std::string>().find("clamped"), std::string::npos);
+}
+
+TEST(ServeSimulate, AnswersAsTheCommandLineDoes) {
+  TestServer server;
+  // The witness of one_rail_position.yaml (problems/README.md): it lands.
+  const json stroke = {{"speed", 1.002}, {"aim_deg", -60.36}, {"topspin_k", 0.8}, {"sidespin_k", 0}};
+  const Answer a = post(server, "/api/simulate",
+                        json{{"problem", example_problem(server, "one_rail_position.yaml")},
+                             {"stroke", stroke}});
+  ASSERT_EQ(a.status, 200) << a.raw;
+  EXPECT_EQ(a.body["status"], "rest");
+  EXPECT_EQ(a.body["reaches_target"], true);
+  EXPECT_FALSE(a.body["path"].empty());
+  const json cli = cli_json("simulate '" + problem_path("one_rail_position") +
+                                "' --speed 1.002 --aim -60.36 --topspin-k 0.8 --sidespin-k 0 --json",
+                            "");
+  EXPECT_EQ(comparable(a.body), comparable(cli));
+}
+
+TEST(ServeSpinmap, AnswersAsTheCommandLineDoesWithEveryCell) {
+  TestServer server;
+  const json request = {{"problem", example_problem(server, "one_rail_position.yaml")},
+                        {"speed", 1.002},
+                        {"aim_deg", -60.36},
+                        {"grid", 21},
+                        {"options", {{"method", "exact"}}}};
+  const Answer a = post(server, "/api/spinmap", request);
+  ASSERT_EQ(a.status, 200) << a.raw;
+  const json cells = a.body["cells"];
+  json without_cells = a.body;
+  without_cells.erase("cells");
+  const json cli = cli_json("spinmap '" + problem_path("one_rail_position") +
+                                "' --speed 1.002 --aim -60.36 --grid 21 --method exact --json --out '" +
+                                (scratch() / "map.svg").string() + "'",
+                            "");
+  EXPECT_EQ(comparable(without_cells), comparable(cli));
+  // Every grid spin, the landing ones among them as the summary lists them.
+  ASSERT_EQ(cells.size(), a.body["points"].get<size_t>());
+  size_t landing = 0;
+  for (const json& c : cells) landing += c["lands"].get<bool>() ? 1 : 0;
+  EXPECT_EQ(landing, a.body["landing"].get<size_t>());
+  size_t listed = 0;
+  for (const json& c : cells) {
+    if (!c["lands"].get<bool>()) continue;
+    const json& l = a.body["landing_spins"][listed++];
+    EXPECT_EQ(c["topspin_k"], l["topspin_k"]);
+    EXPECT_EQ(c["sidespin_k"], l["sidespin_k"]);
+    EXPECT_EQ(c["kind"], "at_rest_allowed_cushions");
+  }
+  json counted = json::object();
+  for (const json& c : cells) counted[c["kind"].get<std::string>()] = counted.value(c["kind"], 0) + 1;
+  for (const auto& [kind, n] : a.body["outcomes"].items())
+    EXPECT_EQ(counted.value(kind, 0), n.get<int>()) << kind;
+}
+
+TEST(ServeSpinmap, WithoutSpeedAndAimMapsThePlannersStroke) {
+  TestServer server;
+  const Answer a = post(server, "/api/spinmap",
+                        json{{"problem", example_problem(server, "one_rail_position.yaml")},
+                             {"grid", 11},
+                             {"options", quick_options(5)}});
+  ASSERT_EQ(a.status, 200) << a.raw;
+  EXPECT_EQ(a.body["stroke_source"], "planner");
+  EXPECT_EQ(a.body["speed"], a.body["planner"]["shot"]["speed"]);
+  EXPECT_EQ(a.body["aim_deg"], a.body["planner"]["shot"]["aim_deg"]);
+}
+
+TEST(ServePage, IsServedFromTheBinaryAndNothingElseIs) {
+  TestServer server;
+  httplib::Client c = server.client();
+  const httplib::Result page = c.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_EQ(page->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  EXPECT_NE(page->body.find("What spin lands here?"), std::string::npos);
+  EXPECT_NE(page->get_header_value("Content-Security-Policy").find("default-src 'self'"),
+            std::string::npos);
+  const httplib::Result script = c.Get("/app.js");
+  ASSERT_TRUE(script);
+  EXPECT_EQ(script->status, 200);
+  EXPECT_EQ(script->get_header_value("Content-Type"), "text/javascript; charset=utf-8");
+  // No file of the server's disk, by any spelling of a path.
+  for (const char* path : {"/../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/web/index.html",
+                           "/etc/passwd", "/problems/one_rail_position.yaml", "/api/nothing",
+                           "/index.html/", "//etc/passwd"}) {
+    const Answer a = get(server, path);
+    EXPECT_EQ(a.status, 404) << path << ": " << a.raw;
+    EXPECT_TRUE(a.body.is_object() && a.body.contains("error")) << path << ": " << a.raw;
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Bad input
+
+TEST(ServeBadInput, MalformedJsonIsA400ForTheBody) {
+  TestServer server;
+  for (const char* body : {"{\"problem\": ", "", "not json", "{\"a\": 1,}", "\xff\xfe"})
+    for (const char* path : {"/api/solve", "/api/simulate", "/api/spinmap"}) {
+      SCOPED_TRACE(std::string(path) + " " + body);
+      expect_error(post(server, path, std::string(body)), 400, std::nullopt, "not JSON");
+    }
+  expect_error(post(server, "/api/solve", std::string("[1, 2]")), 400, std::nullopt, "JSON object");
+}
+
+TEST(ServeBadInput, UnknownFieldsAreNamed) {
+  TestServer server;
+  json with_typo = kSmallProblem;
+  with_typo["tabel"] = {{"length", 3}};
+  expect_error(post(server, "/api/solve", json{{"problem", with_typo}}), 400, "problem.tabel",
+               "did you mean table");
+  json nested = kSmallProblem;
+  nested["table"] = {{"lenght", 3}};
+  expect_error(post(server, "/api/solve", json{{"problem", nested}}), 400, "problem.table.lenght",
+               "unknown key");
+  expect_error(post(server, "/api/solve", json{{"problem", kSmallProblem}, {"seed", 1}}), 400, "seed",
+               "unknown field 'seed'");
+  expect_error(post(server, "/api/solve", json{{"problem", kSmallProblem}, {"options", {{"threads", 4}}}}),
+               400, "options.threads", "the options are");
+  expect_error(post(server, "/api/simulate",
+                    json{{"problem", kSmallProblem},
+                         {"stroke", {{"speed", 1}, {"aim_deg", 0}, {"spin", 1}}}}),
+               400, "stroke.spin", "unknown field");
+  expect_error(post(server, "/api/spinmap", json{{"problem", kSmallProblem}, {"options", {{"max_events", 5}}}}),
+               400, "options.max_events", "unknown field");
+}
+
+TEST(ServeBadInput, BadValuesNameTheirField) {
+  TestServer server;
+  const auto solve = [&](json problem, json options = json::object()) {
+    return post(server, "/api/solve", json{{"problem", problem}, {"options", options}});
+  };
+  json p = kSmallProblem;
+  p["table"] = {{"length", -1}};
+  expect_error(solve(p), 400, "problem.table.length", "must be positive");
+  p = kSmallProblem;
+  p["cue_ball"] = {0.01, 0.01};
+  expect_error(solve(p), 400, "problem.cue_ball", "off the table");
+  p = kSmallProblem;
+  p["limits"] = {{"speed", {3, 1}}};
+  expect_error(solve(p), 400, "problem.limits.speed", "min must be below max");
+  p = kSmallProblem;
+  p["tolerance"] = "0.02";
+  expect_error(solve(p), 400, "problem.tolerance", "must be a number");
+  expect_error(solve(kSmallProblem, {{"max_time", -1}}), 400, "options.max_time", "positive");
+  expect_error(solve(kSmallProblem, {{"seed", "x"}}), 400, "options.seed", "whole number");
+  expect_error(solve(kSmallProblem, {{"seed", -1}}), 400, "options.seed", "whole number");
+  expect_error(solve(kSmallProblem, {{"samples", 2.5}}), 400, "options.samples", "whole number");
+  expect_error(solve(kSmallProblem, {{"samples", 100000}}), 400, "options.samples", "at most 2000");
+  expect_error(solve(kSmallProblem, {{"robust", true}, {"samples", 0}}), 400, "options.samples",
+               "options.robust");
+  expect_error(solve(kSmallProblem, {{"global", "anneal"}}), 400, "options.global", "must be one of");
+  expect_error(solve(kSmallProblem, {{"method", "fast"}}), 400, "options.method", "must be one of");
+  expect_error(solve(kSmallProblem, {{"accuracy", 1}}), 400, "options.accuracy", "[1e-12, 0.1]");
+  expect_error(post(server, "/api/solve", json{{"options", json::object()}}), 400, "problem",
+               "problem is required");
+  expect_error(post(server, "/api/solve", json{{"problem", 5}}), 400, "problem", "must be an object");
+  expect_error(post(server, "/api/solve", json{{"problem", kSmallProblem}, {"options", 5}}), 400,
+               "options", "must be an object");
+  // A problem nested deeper than any file is refused before it is written out.
+  const std::string deep = std::string(5000, '[') + "1" + std::string(5000, ']');
+  expect_error(post(server, "/api/solve",
+                    "{\"problem\": {\"cue_ball\": [0.8, 0.5], \"target\": [2.6, 1.2], \"obstacles\": " +
+                        deep + "}}"),
+               400, "problem", "deeper");
+
+  const auto simulate = [&](json stroke) {
+    return post(server, "/api/simulate", json{{"problem", kSmallProblem}, {"stroke", stroke}});
+  };
+  expect_error(simulate({{"aim_deg", 0}}), 400, "stroke.speed", "required");
+  expect_error(simulate({{"speed", 0}, {"aim_deg", 0}}), 400, "stroke.speed", "stroke.speed");
+  expect_error(simulate({{"speed", 1}, {"aim_deg", "north"}}), 400, "stroke.aim_deg", "number");
+  expect_error(post(server, "/api/simulate", json{{"problem", kSmallProblem}}), 400, "stroke", "required");
+  expect_error(post(server, "/api/simulate",
+                    json{{"problem", kSmallProblem},
+                         {"stroke", {{"speed", 1}, {"aim_deg", 0}}},
+                         {"options", {{"max_events", 5000}}}}),
+               400, "options.max_events", "at most 1000");
+
+  const auto spinmap = [&](json extra) {
+    json request = {{"problem", kSmallProblem}};
+    request.update(extra);
+    return post(server, "/api/spinmap", request);
+  };
+  expect_error(spinmap({{"speed", 1}}), 400, "aim_deg", "required with speed");
+  expect_error(spinmap({{"speed", -1}, {"aim_deg", 0}}), 400, "speed", "above 0");
+  expect_error(spinmap({{"speed", 1}, {"aim_deg", 0}, {"grid", 62}}), 400, "grid", "3 to 61");
+  expect_error(spinmap({{"speed", 1}, {"aim_deg", 0}, {"grid", 2}}), 400, "grid", "3 to 61");
+}
+
+TEST(ServeBadInput, OversizeBodiesAre413) {
+  ServerOptions options = TestServer::defaults();
+  options.max_body_bytes = 4096;
+  TestServer server(options);
+  const std::string big = "{\"problem\": {\"name\": \"" + std::string(5000, 'x') + "\"}}";
+  const Answer a = post(server, "/api/solve", big);
+  expect_error(a, 413, std::nullopt, "larger than this server takes (4096 bytes)");
+  // A body within the limit is read.
+  const Answer ok = post(server, "/api/solve", std::string("{\"problem\": 1}"));
+  EXPECT_EQ(ok.status, 400);
+}
+
+TEST(ServeBadInput, OnlyJsonPostsAddressedToLocalhostAreTaken) {
+  TestServer server;
+  expect_error(post(server, "/api/solve", json{{"problem", kSmallProblem}}.dump(), "text/plain"), 415,
+               std::nullopt, "Content-Type: application/json");
+  httplib::Client c = server.client();
+  const Answer a = answer_of(c.Get("/api/health", {{"Host", "attacker.example:80"}}));
+  expect_error(a, 403, std::nullopt, "addressed to localhost");
+  const Answer named = answer_of(c.Get("/api/health", {{"Host", "localhost:" + std::to_string(server.port())}}));
+  EXPECT_EQ(named.status, 200);
+}
+
+// ---------------------------------------------------------------------------
+// Concurrency
+
+TEST(ServeConcurrency, SixteenSolvesAtOnceAreAllAnsweredAsTheCommandLineAnswers) {
+  ServerOptions options = TestServer::defaults();
+  options.workers = 16;
+  // Sixteen searches share two cores (slower still under a sanitizer): a clock long
+  // enough that the evaluation budget, not the time, ends each one, as the seed's
+  // answer needs (planner.hpp).
+  options.limits.max_time_s = 600;
+  TestServer server(options);
+  // Four problems, two seeds each, each asked twice: 16 requests at once.
+  const std::vector<std::string> stems = {"one_rail_position", "two_rail_position", "near_pocket",
+                                          "pool_table"};
+  struct Job {
+    std::string stem;
+    uint64_t seed;
+    json request;
+    Answer answer;
+  };
+  std::vector<Job> jobs;
+  std::map<std::pair<std::string, uint64_t>, json> expected;
+  for (const std::string& stem : stems)
+    for (uint64_t seed : {2u, 9u}) {
+      json search = quick_options(seed);
+      search["max_time"] = 600;
+      const json request = {{"problem", example_problem(server, stem + ".yaml")}, {"options", search}};
+      jobs.push_back({stem, seed, request, {}});
+      jobs.push_back({stem, seed, request, {}});
+      expected[{stem, seed}] = cli_json("solve '" + problem_path(stem) + "' " + quick_flags(seed) +
+                                            " --max-time 600 --json",
+                                        stem + std::to_string(seed));
+    }
+  ASSERT_EQ(jobs.size(), 16u);
+  std::latch go(static_cast<std::ptrdiff_t>(jobs.size()));
+  std::vector<std::thread> threads;
+  for (Job& job : jobs)
+    threads.emplace_back([&] {
+      httplib::Client c = server.client();
+      const std::string body = job.request.dump();
+      go.arrive_and_wait();
+      job.answer = answer_of(c.Post("/api/solve", body, "application/json"));
+    });
+  for (std::thread& t : threads) t.join();
+  for (const Job& job : jobs) {
+    SCOPED_TRACE(job.stem + " seed " + std::to_string(job.seed));
+    ASSERT_EQ(job.answer.status, 200) << job.answer.raw;
+    EXPECT_EQ(comparable(job.answer.body), comparable(expected[{job.stem, job.seed}]));
+  }
+}
+
+TEST(ServeConcurrency, ABusyServerAnswers503AtOnce) {
+  ServerOptions options = TestServer::defaults();
+  options.workers = 1;
+  options.limits.max_time_s = 2.0;
+  TestServer server(options);
+  // One long search (about 3 s: the clock ends the search, then 11 strokes' success
+  // probabilities of 1000 noisy strokes each) holds the only worker.
+  const json long_search = {{"problem", kSmallProblem},
+                            {"options",
+                             {{"method", "exact"}, {"max_evaluations", 200000}, {"max_time", 2},
+                              {"samples", 1000}, {"alternatives", 10}, {"starts", 32}}}};
+  Answer first;
+  Clock::time_point first_done;
+  std::thread holder([&] {
+    first = post(server, "/api/solve", long_search);
+    first_done = Clock::now();
+  });
+  const Clock::time_point deadline = Clock::now() + std::chrono::seconds(10);
+  while (get(server, "/api/health").body["busy"] != 1 && Clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(get(server, "/api/health").body["busy"], 1);
+
+  const Clock::time_point asked = Clock::now();
+  const Answer second = post(server, "/api/simulate",
+                             json{{"problem", kSmallProblem}, {"stroke", {{"speed", 1}, {"aim_deg", 0}}}});
+  const double waited = std::chrono::duration<double>(Clock::now() - asked).count();
+  expect_error(second, 503, std::nullopt, "busy");
+  EXPECT_EQ(second.retry_after, "1");
+  EXPECT_LT(waited, 0.5) << "a busy server must not queue the request";
+  // The page and the health check still answer while the worker computes.
+  EXPECT_EQ(get(server, "/").status, 200);
+  const Clock::time_point checked = Clock::now();
+  holder.join();
+  EXPECT_GT(first_done, checked) << "the long search ended before the test was done with it";
+  EXPECT_EQ(first.status, 200) << first.raw;
+  EXPECT_EQ(get(server, "/api/health").body["busy"], 0);
+}
+
+// ---------------------------------------------------------------------------
+// Impact tables
+
+// An Api over a table store with a tiny table, as the server has one.
+struct TableApi {
+  explicit TableApi(size_t max_tables = 8) : store(settings(max_tables)) {
+    std::string error;
+    api = std::make_unique<Api>(cueplan::cli::ApiLimits{}, "table", &store,
+                                cueplan::cli::shipped_examples(&error));
+    EXPECT_EQ(error, "");
+  }
+  static ImpactTableStore::Settings settings(size_t max_tables) {
+    ImpactTableStore::Settings s;
+    s.cache_dir = (scratch() / ("tables" + std::to_string(max_tables))).string();
+    s.options = cueplan::physics::test::tiny_table_options();
+    s.max_tables = max_tables;
+    return s;
+  }
+  void wait_until_made() {
+    const Clock::time_point deadline = Clock::now() + std::chrono::seconds(60);
+    while (store.working() && Clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ASSERT_FALSE(store.working());
+  }
+  ImpactTableStore store;
+  std::unique_ptr<Api> api;
+};
+
+TEST(ServeImpactTables, ASearchBeforeItsTableIsMadeIsAskedToComeBackThenUsesIt) {
+  TableApi t;
+  const std::string body =
+      json{{"problem", kSmallProblem}, {"options", {{"max_evaluations", 300}, {"samples", 10}}}}.dump();
+  // The first request for a cushion queues its table: 503, with when to ask again.
+  const ApiReply early = t.api->solve(body);
+  EXPECT_EQ(early.status, 503) << early.body.dump();
+  EXPECT_EQ(early.retry_after_s, 5);
+  EXPECT_EQ(early.body["field"], "options.method");
+  EXPECT_NE(early.body["error"].get<std::string>().find("not ready yet"), std::string::npos);
+  t.wait_until_made();
+  const ApiReply later = t.api->solve(body);
+  ASSERT_EQ(later.status, 200) << later.body.dump();
+  EXPECT_EQ(later.body["options"]["method"], "table");
+  const ApiReply health = t.api->health(1, 0);
+  EXPECT_EQ(health.body["impact_tables_ready"], true);
+  ASSERT_EQ(health.body["impact_tables"].size(), 1u);
+  EXPECT_EQ(health.body["impact_tables"][0]["state"], "ready");
+  // exact needs no table.
+  const ApiReply exact = t.api->simulate(
+      json{{"problem", kSmallProblem}, {"stroke", {{"speed", 1}, {"aim_deg", 0}}}}.dump());
+  EXPECT_EQ(exact.status, 200);
+}
+
+TEST(ServeImpactTables, ACushionBeyondTheStoresRoomIsRefusedByName) {
+  TableApi t(1);
+  const auto solve = [&](const json& problem) {
+    return t.api->solve(json{{"problem", problem}, {"options", {{"max_evaluations", 300}}}}.dump());
+  };
+  EXPECT_EQ(solve(kSmallProblem).status, 503);  // the one table it keeps
+  json other = kSmallProblem;
+  other["physics"] = {{"mu_cushion", 0.2}};
+  const ApiReply refused = solve(other);
+  EXPECT_EQ(refused.status, 400) << refused.body.dump();
+  EXPECT_EQ(refused.body["field"], "options.method");
+  EXPECT_NE(refused.body["error"].get<std::string>().find("at most 1 cushions"), std::string::npos);
+  t.wait_until_made();
+}
+
+// ---------------------------------------------------------------------------
+// The command as a process
+
+// `cueplan serve ARGS` with its stdout and stderr on pipes.
+class ServeProcess {
+ public:
+  explicit ServeProcess(const std::vector<std::string>& args) {
+    int out[2], err[2];
+    EXPECT_EQ(::pipe(out), 0);
+    EXPECT_EQ(::pipe(err), 0);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, out[1], 1);
+    posix_spawn_file_actions_adddup2(&actions, err[1], 2);
+    posix_spawn_file_actions_addclose(&actions, out[0]);
+    posix_spawn_file_actions_addclose(&actions, err[0]);
+    std::vector<std::string> words = {CUEPLAN_BINARY, "serve"};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    EXPECT_EQ(posix_spawn(&pid_, CUEPLAN_BINARY, &actions, nullptr, argv.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(out[1]);
+    ::close(err[1]);
+    out_ = out[0];
+    err_ = err[0];
+  }
+  ~ServeProcess() {
+    if (pid_ > 0 && !exited_) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+    ::close(out_);
+    ::close(err_);
+  }
+  // The first line on stdout, within `seconds`.
+  std::string first_line(double seconds) {
+    std::string line;
+    const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < deadline) {
+      pollfd p{out_, POLLIN, 0};
+      if (::poll(&p, 1, 50) <= 0) continue;
+      char c = 0;
+      if (::read(out_, &c, 1) != 1) break;
+      if (c == '\n') return line;
+      line += c;
+    }
+    return line;
+  }
+  // Waits up to `seconds` for the exit; its code, or -1 if it did not exit.
+  int wait(double seconds) {
+    const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < deadline) {
+      int status = 0;
+      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+        exited_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return -1;
+  }
+  std::string rest_of_stderr() {
+    std::string text;
+    char buf[4096];
+    for (ssize_t n; (n = ::read(err_, buf, sizeof buf)) > 0;) text.append(buf, static_cast<size_t>(n));
+    return text;
+  }
+  pid_t pid() const { return pid_; }
+
+ private:
+  pid_t pid_ = -1;
+  int out_ = -1, err_ = -1;
+  bool exited_ = false;
+};
+
+int port_in(const std::string& line) {
+  std::smatch m;
+  return std::regex_search(line, m, std::regex(R"(http://127\.0\.0\.1:(\d+)/)")) ? std::stoi(m[1]) : 0;
+}
+
+TEST(ServeCommand, PrintsItsAddressAndStopsCleanlyOnCtrlCAfterTheRequestInFlight) {
+  ServeProcess serve({"--port", "0", "--method", "exact", "--threads", "1", "--max-time", "1.5",
+                      "--table-cache", (scratch() / "cache").string()});
+  const std::string line = serve.first_line(20);
+  const int port = port_in(line);
+  ASSERT_GT(port, 0) << line;
+  EXPECT_NE(line.find("in a browser"), std::string::npos) << line;
+  httplib::Client c("127.0.0.1", port);
+  c.set_read_timeout(30);
+  ASSERT_EQ(answer_of(c.Get("/api/health")).status, 200);
+  // A search the clock ends is running when Ctrl-C comes: it is answered, then the
+  // server stops.
+  Answer in_flight;
+  std::thread request([&] {
+    httplib::Client mine("127.0.0.1", port);
+    mine.set_read_timeout(30);
+    in_flight = answer_of(mine.Post(
+        "/api/solve",
+        json{{"problem", kSmallProblem},
+             {"options", {{"max_evaluations", 200000}, {"max_time", 1.5}, {"samples", 10}}}}
+            .dump(),
+        "application/json"));
+  });
+  const Clock::time_point deadline = Clock::now() + std::chrono::seconds(10);
+  while (answer_of(c.Get("/api/health")).body["busy"] != 1 && Clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(::kill(serve.pid(), SIGINT), 0);
+  request.join();
+  EXPECT_EQ(in_flight.status, 200) << in_flight.raw;
+  EXPECT_EQ(serve.wait(15), 0);
+  const std::string err = serve.rest_of_stderr();
+  EXPECT_NE(err.find("stopping (SIGINT)"), std::string::npos) << err;
+  EXPECT_NE(err.find("cueplan serve: stopped"), std::string::npos) << err;
+  // Nobody listens any more.
+  httplib::Client after("127.0.0.1", port);
+  after.set_connection_timeout(1);
+  EXPECT_FALSE(after.Get("/api/health"));
+}
+
+TEST(ServeCommand, StopsOnSigtermAndWhileATableIsStillBeingBuilt) {
+  // A fresh cache: the real table for the snooker cushion starts building at once and
+  // takes far longer than this test waits.
+  ServeProcess serve({"--port", "0", "--table-cache", (scratch() / "empty-cache").string()});
+  const int port = port_in(serve.first_line(20));
+  ASSERT_GT(port, 0);
+  httplib::Client c("127.0.0.1", port);
+  const Answer health = answer_of(c.Get("/api/health"));
+  ASSERT_EQ(health.status, 200);
+  EXPECT_EQ(health.body["impact_tables_ready"], false);
+  ASSERT_EQ(::kill(serve.pid(), SIGTERM), 0);
+  EXPECT_EQ(serve.wait(10), 0);
+  const std::string err = serve.rest_of_stderr();
+  EXPECT_NE(err.find("stopping (SIGTERM)"), std::string::npos) << err;
+  EXPECT_NE(err.find("still being made"), std::string::npos) << err;
+}
+
+TEST(ServeCommand, ATakenPortAndBadFlagsAreReported) {
+  TestServer server;
+  // (As a process that may be ended: were the port shared, it would serve for ever.)
+  ServeProcess taken({"--method", "exact", "--port", std::to_string(server.port())});
+  EXPECT_EQ(taken.wait(20), 1);
+  const std::string err = taken.rest_of_stderr();
+  EXPECT_NE(err.find("cannot listen on 127.0.0.1 port"), std::string::npos) << err;
+  for (const auto& [flags, words] :
+       std::vector<std::pair<std::string, std::string>>{{"--port 70000", "--port must be 0 to 65535"},
+                                                        {"--threads -1", "--threads"},
+                                                        {"--method paper", "--method must be table or exact"},
+                                                        {"--max-time 0", "--max-time"},
+                                                        {"--max-grid 2", "--max-grid"}}) {
+    const ProcessResult run = cueplan("serve " + flags, flags);
+    EXPECT_EQ(run.exit_code, 2) << flags;
+    EXPECT_EQ(lines_of(run.err).size(), 1u) << run.err;
+    EXPECT_NE(run.err.find(words), std::string::npos) << run.err;
+  }
+}
+
+}  // namespace
+}  // namespace cli_test
