@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "cueplan/physics/cushion_impact.hpp"
 #include "cueplan/physics/impact_table.hpp"
@@ -57,18 +58,29 @@ inline double kinetic_energy_of(const Scene& s, Vec2 v, Vec3 w) {
 
 inline bool finite2(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
-// Every number a shot result reports is finite.
+// Every number a shot result reports is finite, for every ball.
 inline bool all_finite(const ShotResult& r) {
   if (!finite2(r.final_position) || !std::isfinite(r.duration) ||
       !std::isfinite(r.max_cushion_normal_speed))
     return false;
-  for (const ShotEvent& e : r.events)
-    if (!std::isfinite(e.time) || !finite2(e.position) || !finite2(e.velocity) ||
-        !is_finite(e.spin) || !std::isfinite(e.normal_speed))
-      return false;
-  for (const PathSegment& s : r.path)
-    if (!std::isfinite(s.t0) || !std::isfinite(s.t1) || !finite2(s.p0) || !finite2(s.v0) ||
-        !finite2(s.accel))
+  const auto finite_events = [](const std::vector<ShotEvent>& events) {
+    for (const ShotEvent& e : events)
+      if (!std::isfinite(e.time) || !finite2(e.position) || !finite2(e.velocity) ||
+          !is_finite(e.spin) || !std::isfinite(e.normal_speed) || !std::isfinite(e.impulse))
+        return false;
+    return true;
+  };
+  const auto finite_path = [](const std::vector<PathSegment>& path) {
+    for (const PathSegment& s : path)
+      if (!std::isfinite(s.t0) || !std::isfinite(s.t1) || !finite2(s.p0) || !finite2(s.v0) ||
+          !finite2(s.accel))
+        return false;
+    return true;
+  };
+  if (!finite_events(r.events) || !finite_path(r.path)) return false;
+  for (const BallOutcome& b : r.balls)
+    if (!finite2(b.final_position) || !std::isfinite(b.max_cushion_normal_speed) ||
+        !finite_events(b.events) || !finite_path(b.path))
       return false;
   return true;
 }
@@ -90,7 +102,11 @@ struct PathAudit {
 // `samples` interior times from the segment's start event with the cloth laws of
 // PHYSICS.md: while sliding dw/dt = (5 / 2R) z x (-a) (a = mu_s g along -u), while
 // rolling w = (-v_y, v_x) / R, and w_z falls at 5 mu_sp g / (2R) toward zero.
-inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4) {
+//
+// For one ball's events and path (ShotResult::balls[k]): its kinetic energy may rise only
+// where another ball strikes it (ball_contact events, not counted).
+inline PathAudit audit_path(const Scene& s, const std::vector<ShotEvent>& events,
+                            const std::vector<PathSegment>& path, int samples = 4) {
   PathAudit audit;
   const double radius = s.radius();
   const double spin_decel = 2.5 * s.cloth.mu_spin * s.cloth.gravity / radius;
@@ -99,9 +115,13 @@ inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4
     return std::max({off - p.x, p.x - (s.length - off), off - p.y, p.y - (s.width - off), 0.0});
   };
   double last = INFINITY;
-  auto visit = [&](double energy, const std::string& where, bool impact) {
+  auto visit = [&](double energy, const std::string& where, bool impact, bool contact = false) {
     double gain = 0.0;
     if (std::isfinite(last) && energy > last) gain = last > 0.0 ? (energy - last) / last : INFINITY;
+    if (contact) {
+      last = energy;
+      return;
+    }
     double& worst = impact ? audit.max_impact_energy_gain : audit.max_energy_gain;
     if (gain > worst) {
       worst = gain;
@@ -118,27 +138,27 @@ inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4
   };
   size_t next_event = 0;
   auto take_event = [&] {
-    const ShotEvent& e = r.events[next_event];
-    if (next_event > 0 && e.time < r.events[next_event - 1].time) audit.times_ordered = false;
+    const ShotEvent& e = events[next_event];
+    if (next_event > 0 && e.time < events[next_event - 1].time) audit.times_ordered = false;
     audit.max_outside = std::max(audit.max_outside, outside(e.position));
     visit(kinetic_energy_of(s, e.velocity, e.spin),
           std::string("event ") + std::to_string(next_event) + " (" + to_string(e.type) + ")",
-          e.type == EventType::cushion);
+          e.type == EventType::cushion, e.type == EventType::ball_contact);
     ++next_event;
   };
-  for (size_t i = 0; i < r.path.size(); ++i) {
-    const PathSegment& seg = r.path[i];
+  for (size_t i = 0; i < path.size(); ++i) {
+    const PathSegment& seg = path[i];
     if (seg.t1 < seg.t0) audit.times_ordered = false;
-    while (next_event < r.events.size() && !starts(r.events[next_event], seg)) take_event();
+    while (next_event < events.size() && !starts(events[next_event], seg)) take_event();
     // (A segment of zero length by rounding starts where the next one does.)
-    while (next_event + 1 < r.events.size() && starts(r.events[next_event + 1], seg) &&
-           !(i + 1 < r.path.size() && starts(r.events[next_event + 1], r.path[i + 1])))
+    while (next_event + 1 < events.size() && starts(events[next_event + 1], seg) &&
+           !(i + 1 < path.size() && starts(events[next_event + 1], path[i + 1])))
       take_event();
-    if (next_event == r.events.size()) {
+    if (next_event == events.size()) {
       audit.segments_matched = false;
       break;
     }
-    const ShotEvent& start = r.events[next_event];
+    const ShotEvent& start = events[next_event];
     take_event();
     const Vec3 w0 = start.spin;
     for (int k = 1; k <= samples + 1; ++k) {
@@ -161,15 +181,20 @@ inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4
             "segment " + std::to_string(i) + " at t = " + std::to_string(seg.t0 + dt), false);
     }
     // The segment ends where the next event happens.
-    if (next_event < r.events.size()) {
+    if (next_event < events.size()) {
       const Vec2 end = seg.at(seg.t1);
-      const Vec2 at = r.events[next_event].position;
+      const Vec2 at = events[next_event].position;
       audit.max_gap = std::max(audit.max_gap, std::hypot(end.x - at.x, end.y - at.y));
-      if (r.events[next_event].time != seg.t1) audit.times_ordered = false;
+      if (events[next_event].time != seg.t1) audit.times_ordered = false;
     }
   }
-  while (next_event < r.events.size()) take_event();
+  while (next_event < events.size()) take_event();
   return audit;
+}
+
+// The cue ball's (ShotResult::events and ::path).
+inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4) {
+  return audit_path(s, r.events, r.path, samples);
 }
 
 }  // namespace cueplan::physics::test
