@@ -46,9 +46,9 @@ FieldPath scene_field_of_collision(const FieldPath& field) {
   return field.under({"ball_contact"});
 }
 
-// Where a ball may lie: on the cloth, out of the pockets, clear of the obstacles and of
-// the object balls other than `self` (an index into balls, or -1).
-Validation place_error(const Scene& s, Vec2 p, const FieldPath& what, int self) {
+// Where a ball may lie: on the cloth, out of the pockets, clear of the obstacles and,
+// with `object_balls`, of the object balls other than `self` (an index into balls, or -1).
+Validation place_error(const Scene& s, Vec2 p, const FieldPath& what, bool object_balls, int self) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y))
     return invalid(what, "must be finite (m)", std::isfinite(p.x) ? p.y : p.x);
   const double off = s.contact_offset();
@@ -70,7 +70,7 @@ Validation place_error(const Scene& s, Vec2 p, const FieldPath& what, int self) 
       return e;
     }
   }
-  for (size_t i = 0; i < s.balls.size(); ++i) {
+  for (size_t i = 0; object_balls && i < s.balls.size(); ++i) {
     if (static_cast<int>(i) != self && overlap(p, s.balls[i].position, s.radius())) {
       ValidationError e = invalid(what, "overlaps {other}");
       e.other = FieldPath{"balls", s.balls[i].name};
@@ -99,8 +99,8 @@ Validation balls_error(const Scene& s) {
     }
   }
   for (size_t i = 0; i < s.balls.size(); ++i)
-    if (Validation e =
-            place_error(s, s.balls[i].position, {"balls", s.balls[i].name}, static_cast<int>(i)))
+    if (Validation e = place_error(s, s.balls[i].position, {"balls", s.balls[i].name}, true,
+                                   static_cast<int>(i)))
       return e;
   return {};
 }
@@ -173,7 +173,11 @@ Validation Scene::validate() const {
 }
 
 Validation Scene::check_position(Vec2 p, const FieldPath& what) const {
-  return place_error(*this, p, what, -1);
+  return place_error(*this, p, what, true, -1);
+}
+
+Validation Scene::check_rest_position(Vec2 p, const FieldPath& what) const {
+  return place_error(*this, p, what, false, -1);
 }
 
 std::vector<Pocket> standard_pockets(double length, double width, double radius) {

@@ -100,6 +100,9 @@ struct Scene {
   // the field named `what` (a pocket or ball it meets is the error's `other`, named as in
   // validate()).
   Validation check_position(Vec2 position, const FieldPath& what) const;
+  // Where a ball may come to rest after a shot: the same, but the object balls, which
+  // the shot may have moved, do not count.
+  Validation check_rest_position(Vec2 position, const FieldPath& what) const;
 };
 
 // Snooker table with the six standard pockets (capture radius kDefaultPocketRadius), in
