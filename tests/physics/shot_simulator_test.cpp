@@ -590,7 +590,7 @@ TEST(ShotSimulatorBalls, MirrorSymmetryOfAWholeMultiBallShot) {
                                                {"brown", {1.0, 1.3}}});
   const Vec2 cue{0.7, 0.5};
   for (const Shot& shot :
-       {Shot{2.5, 6.0, 0.6, 0.5}, Shot{2.5, 30.0, 0.6, 0.5}, Shot{1.8, 12.0, 1.0, 0.0}}) {
+       {Shot{2.5, 12.0, 0.6, 0.5}, Shot{3.0, 11.0, -0.5, -0.5}, Shot{2.2, 12.0, 0.2, 0.8}}) {
     const ShotResult a = simulate(s, cue, shot);
     const ShotResult b = simulate(mirrored(s), {cue.x, s.width - cue.y},
                                   {shot.speed, -shot.aim_deg, shot.topspin_k, -shot.sidespin_k});
@@ -804,7 +804,7 @@ TEST(ShotSimulatorBalls, EveryBallsPathMeetsItsEventsAndNeverGainsEnergy) {
                                                {"yellow", {2.1, 0.75}},
                                                {"green", {2.6, 1.2}},
                                                {"brown", {1.0, 1.3}}});
-  for (const Shot& shot : {Shot{2.5, 6.0, 0.6, 0.5}, Shot{2.5, 30.0, 0.6, 0.5}}) {
+  for (const Shot& shot : {Shot{2.5, 12.0, 0.6, 0.5}, Shot{3.0, 11.0, -0.5, -0.5}}) {
     const ShotResult r = simulate(s, {0.7, 0.5}, shot);
     EXPECT_TRUE(test::all_finite(r));
     for (const BallOutcome& b : r.balls) {

@@ -40,7 +40,7 @@ struct Vec2 {
 struct ClothParams {
   double mu_slide = 0.212;  // ball-cloth sliding friction
   double mu_roll = 0.01;    // rolling resistance
-  double mu_spin = 0.044;   // spinning (sidespin) friction
+  double mu_spin = 0.0117;  // spinning (sidespin) friction (PHYSICS.md: 10.9 rad/s^2 for snooker)
   double gravity = 9.81;    // m/s^2
 };
 
