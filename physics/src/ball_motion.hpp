@@ -144,30 +144,55 @@ inline double entry_time(const Quadratic& q, double horizon, Vec2 c, double r) {
   return n > 0 ? roots[0] : kNever;
 }
 
-// The first time in (after, horizon] - in [0, horizon] when `after` is negative - at
-// which two balls on the paths qi and qj (about the same instant) come to `diameter`
-// apart while approaching, or kNever: the first root of the quartic
-// |p_j(t) - p_i(t)|^2 - diameter^2 where it falls. Boxes first: most pairs are apart.
-inline double contact_time(const Quadratic& qi, const Quadratic& qj, double horizon,
-                           double diameter, double after) {
+// When two balls next meet: the time, and whether they were touching already (within
+// 2R, as rounding leaves balls that have just collided) when they began to approach.
+struct Meeting {
+  double time = kNever;
+  bool touching = false;
+};
+
+// The first contact in (after, horizon] - in [0, horizon] when `after` is negative - of
+// two balls on the paths qi and qj (about the same instant), or none. With
+// f(t) = |p_j(t) - p_i(t)|^2 - diameter^2, a quartic, balls apart meet where f falls
+// through zero; balls that start touching (f(0) <= 0) meet as soon as they approach
+// (f' < 0), now or where f' turns negative before f has risen above zero. Boxes first:
+// most pairs are apart.
+inline Meeting contact_time(const Quadratic& qi, const Quadratic& qj, double horizon,
+                            double diameter, double after) {
   const Box a = box_of(qi, horizon), b = box_of(qj, horizon);
   if (a.xlo > b.xhi + diameter || b.xlo > a.xhi + diameter || a.ylo > b.yhi + diameter ||
       b.ylo > a.yhi + diameter)
-    return kNever;
+    return {};
   double c[5];
   distance_quartic(qj.a0 - qi.a0, qj.a1 - qi.a1, qj.a2 - qi.a2, diameter, c);
   // Touching (or a rounding inside) and approaching now.
-  if (after < 0.0 && c[0] <= 0.0 && c[1] < 0.0) return 0.0;
+  if (after < 0.0 && c[0] <= 0.0 && c[1] < 0.0) return {0.0, true};
+  const double slope[4] = {c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4]};  // f'
   double roots[kMaxDegree];
+  double rises_at = kNever;  // where f first rises through zero (the balls part)
   const int n = roots_in(c, 4, 0.0, horizon, roots);
   for (int k = 0; k < n; ++k) {
     const double t = roots[k];
-    if (!(t > after)) continue;
+    const double df = evaluate(slope, 3, t);
+    if (df > 0.0 && rises_at == kNever) rises_at = t;
     // The distance falls through 2R here: an approach, not a parting.
-    const double falling = c[1] + t * (2.0 * c[2] + t * (3.0 * c[3] + t * 4.0 * c[4]));
-    if (falling < 0.0) return t;
+    if (t > after && df < 0.0) {
+      if (c[0] > 0.0 || rises_at < t) return {t, false};
+      break;  // touching until then: the turn below comes first
+    }
   }
-  return kNever;
+  if (c[0] > 0.0) return {};
+  // Touching (or a rounding inside) and parting now: they meet again where f' turns
+  // negative, if f has not risen above zero by then.
+  double turns[kMaxDegree];
+  const int m = roots_in(slope, 3, 0.0, horizon, turns);
+  for (int k = 0; k < m; ++k) {
+    const double t = turns[k];
+    if (!(t > after) || !(t < rises_at)) continue;
+    const double curve[3] = {slope[1], 2.0 * slope[2], 3.0 * slope[3]};  // f''
+    if (evaluate(curve, 2, t) < 0.0) return {t, true};
+  }
+  return {};
 }
 
 // Upper bound on how far the ball can still travel (sliding, then rolling to rest).

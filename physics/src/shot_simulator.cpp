@@ -95,10 +95,11 @@ struct BallRun {
 
 // When two balls next touch while approaching, found when either last changed.
 struct PairContact {
-  double time = kNever;  // s since the strike
-  double from = 0.0;     // s, the instant both paths were taken about
-  double root = 0.0;     // time - from
-  double horizon = 0.0;  // s after `from` that the search covered
+  double time = kNever;   // s since the strike
+  double from = 0.0;      // s, the instant both paths were taken about
+  double root = 0.0;      // time - from
+  double horizon = 0.0;   // s after `from` that the search covered
+  bool touching = false;  // they touched already when they began to approach
 };
 
 // The next event of the shot.
@@ -107,6 +108,7 @@ struct Next {
   double time = kNever;  // s since the strike
   int ball = -1;         // whose (the lower index for a ball-ball contact)
   int other = -1;        // the other ball of a contact; else the cushion, pocket or obstacle
+  bool pressed = false;  // a contact of balls that touch with no approach speed left
 };
 
 // True when `a` goes before `b` among events within kTie of each other.
@@ -205,10 +207,17 @@ class ShotRun {
       const Next next = earliest();
       if (next.type != EventType::ball_contact) return next;
       // The contact's balls must approach along their line of centres where they meet,
-      // as the collision model asks; a graze that rounding makes a parting is no
-      // contact, and the pair's next root is looked for.
+      // as the collision model asks. A graze that rounding makes a parting is no
+      // contact, and the pair's next root is looked for; but balls that touch and that
+      // their paths press together with no approach speed left are a push, which is
+      // not modelled (like a ball pressed into a cushion).
       if (approaching(next)) return next;
       PairContact& pair = pair_of(next.ball, next.other);
+      if (pair.touching) {
+        Next pressed = next;
+        pressed.pressed = true;
+        return pressed;
+      }
       search_pair(next.ball, next.other, pair.root);
     }
   }
@@ -273,9 +282,9 @@ class ShotRun {
 
   // The contract's order among a ball's events within kTie of each other: a contact of
   // an earlier kind (or of the same kind with a lower index) that begins within kTie
-  // after the event found comes first. Each search above is bounded by the earliest
-  // event found before it, so such a contact is looked for here: where the ball is at
-  // the window's end says cheaply whether one can exist, and only then is it solved.
+  // after the event found comes first, at the time of the event found. Each search above is bounded
+  // by the earliest event found before it, so such a contact is looked for here: where the ball is
+  // at the window's end says cheaply whether one can exist, and only then is it solved.
   NextEvent settle_ties(const BallRun& r, const Quadratic& q, const NextEvent& found) const {
     if (!(found.after < kNever)) return found;
     const double end = found.after + kTie;
@@ -284,8 +293,11 @@ class ShotRun {
     const auto before_best = [&](EventType type, int which) {
       return rank(type) != rank(best.type) ? rank(type) < rank(best.type) : which < best.which;
     };
+    // Events of one window are taken as simultaneous, at the first one's time: a ball is
+    // never carried past a contact it meets first (the cushion it then resolves puts it
+    // on its line).
     const auto consider = [&](EventType type, double hit, int which) {
-      if (hit <= end && before_best(type, which)) best = {type, hit, which};
+      if (hit <= end && before_best(type, which)) best = {type, found.after, which};
     };
     if (r.check_cushions) {
       for (int i = 0; i < 4; ++i)
@@ -343,13 +355,15 @@ class ShotRun {
       pair.from = t_;
       pair.horizon = std::min(a.own_time(), b.own_time()) - t_ + kTie;
     }
-    const double root = detail::contact_time(a.path_at(pair.from), b.path_at(pair.from),
-                                             pair.horizon, 2.0 * cloth_.radius, after);
-    pair.root = root;
-    pair.time = root < kNever ? pair.from + root : kNever;
+    const detail::Meeting contact = detail::contact_time(a.path_at(pair.from), b.path_at(pair.from),
+                                                         pair.horizon, 2.0 * cloth_.radius, after);
+    pair.root = contact.time;
+    pair.touching = contact.touching;
+    pair.time = contact.time < kNever ? pair.from + contact.time : kNever;
   }
 
-  // The earliest event of all; those within kTie of it in the contract's order.
+  // The earliest event of all; those within kTie of it in the contract's order, all at the
+  // first one's time.
   Next earliest() const {
     double first = kNever;
     for (const BallRun& r : runs_)
@@ -374,6 +388,7 @@ class ShotRun {
             consider({EventType::ball_contact, p.time, static_cast<int>(i), static_cast<int>(j)});
         }
     }
+    best.time = first;  // the window's events are simultaneous, at its first time
     return best;
   }
 
@@ -404,7 +419,8 @@ class ShotRun {
       bring(next.ball, next.time - runs_[static_cast<size_t>(next.ball)].t0);
       bring(next.other, next.time - runs_[static_cast<size_t>(next.other)].t0);
     } else {
-      bring(next.ball, runs_[static_cast<size_t>(next.ball)].own.after);
+      const BallRun& r = runs_[static_cast<size_t>(next.ball)];
+      bring(next.ball, next.time == r.own_time() ? r.own.after : next.time - r.t0);
     }
   }
 
@@ -457,7 +473,16 @@ class ShotRun {
         log(k, next.type, -1, next.other);
         over_ = true;
         break;
-      case EventType::ball_contact: collide(next.ball, next.other); break;
+      case EventType::ball_contact:
+        if (next.pressed)
+          end_shot(ShotStatus::collision_failed,
+                   fmt::format("balls {} and {}: pressed together with no approach speed left "
+                               "(a sustained push is not modelled)",
+                               result_->balls[static_cast<size_t>(next.ball)].name,
+                               result_->balls[static_cast<size_t>(next.other)].name));
+        else
+          collide(next.ball, next.other);
+        break;
       case EventType::strike: break;
     }
   }
@@ -527,6 +552,16 @@ class ShotRun {
     b.w = out.ball_j.spin;
     drop_rounding(1e-12 * speed, &a);
     drop_rounding(1e-12 * speed, &b);
+    // Exactly 2R apart (a hair more), so that rounding never leaves them overlapping and
+    // their next contact is a crossing of 2R that the search finds (as a ball that met a
+    // cushion is put on its contact line).
+    const double distance = std::hypot(d.x, d.y), diameter = 2.0 * cloth_.radius;
+    const double apart = diameter * (1.0 + 4e-16);
+    if (distance < apart && distance > diameter * (1.0 - 1e-9)) {
+      const Vec2 shift = (0.5 * (apart - distance) / distance) * d;
+      a.p = a.p - shift;
+      b.p = b.p + shift;
+    }
     log(i, EventType::ball_contact, -1, -1, approach, j, out.impulse_total);
     log(j, EventType::ball_contact, -1, -1, approach, i, out.impulse_total);
     for (const int k : {i, j}) {

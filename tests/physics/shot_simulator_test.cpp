@@ -691,6 +691,63 @@ TEST(ShotSimulatorBalls, TouchingBallsAtRestDoNotCollide) {
   EXPECT_TRUE(away.balls[1].events.empty());
 }
 
+TEST(ShotSimulatorBalls, ACueBallTouchingABallAndStruckIntoItStrikesItAtOnce) {
+  // Touching the red (centres 2R apart, to rounding) and struck into it with so much
+  // draw and side that its sliding path, had it passed through the red, would curve back
+  // into it: the contact is at the strike. (Found by tests/stress: the search took that
+  // later crossing, and the cue ball passed through the ball it touched.)
+  const Scene base = open_table();
+  const Vec2 cue{1.7189536803862029, 0.27281055635889884};
+  const Scene s = with_balls(base, {{"red", {1.770333613125048, 0.28359723850642415}}});
+  ASSERT_NEAR(distance(cue, s.balls[0].position), 2.0 * base.radius(), 1e-15);
+  const ShotResult out =
+      simulate(s, cue, {2.5726842885268324, 33.705710236601703, -11.690763779515461, 20.0});
+  ASSERT_GE(out.events.size(), 2u);
+  EXPECT_EQ(out.events[1].type, EventType::ball_contact);
+  EXPECT_EQ(out.events[1].other, 1);
+  EXPECT_LT(out.events[1].time, 1e-12);
+  EXPECT_EQ(out.first_contact, 1);
+}
+
+TEST(ShotSimulatorBalls, BallsPressedTogetherEndTheShotWithAClearStatus) {
+  // A slow follow stroke into a line of three small balls: each contact leaves the cue
+  // ball pushing again, in ever smaller contacts, until they touch with no approach speed
+  // left and friction presses them together - a push, which is not modelled (as a ball
+  // pressed into a cushion is not). The balls never overlap on the way. (Found by
+  // tests/stress.)
+  Scene s = snooker_scene();
+  CushionParams& p = s.ball_and_cushion;
+  p.mass = 0.36062119036811202;
+  p.radius = 0.0074285252134941261;
+  p.cushion_height = 0.010399935298891777;
+  p.mu_cushion = 0.0;
+  p.mu_table = 0.069609172366957267;
+  p.restitution = 0.70161242557227022;
+  s.pockets = standard_pockets(s.length, s.width, 0.012628492862940014);
+  s.ball_contact = {0.099583784507537021, 0.35955239409947637, BallModel::frictional_inelastic,
+                    BallFriction::speed_dependent};
+  s.balls = {{"b0", {1.7848539958760878, 1.5904609665006728}},
+             {"b1", {1.4240861082171488, 1.1222063922935124}},
+             {"b3", {1.8113007168782131, 1.6016874351128259}}};
+  SimulationOptions o;
+  o.impact_method = ImpactMethod::paper;
+  const ShotResult r = simulate(
+      s, {1.8734887317845283, 1.6280858607377551},
+      {0.15166072420801507, 203.00092073839812, 1.0283022534065649, 0.24355939043714142}, o);
+  EXPECT_EQ(r.status, ShotStatus::collision_failed);
+  EXPECT_NE(r.message.find("pressed together"), std::string::npos) << r.message;
+  double end = 0.0;
+  for (const BallOutcome& b : r.balls)
+    for (const ShotEvent& e : b.events) end = std::max(end, e.time);
+  const double d2 = 2.0 * s.radius();
+  for (double t = 0.0; t <= end; t += end / 2000.0)
+    for (size_t i = 0; i < r.balls.size(); ++i)
+      for (size_t j = i + 1; j < r.balls.size(); ++j)
+        EXPECT_GE(distance(test::position_at(r.balls[i], t), test::position_at(r.balls[j], t)),
+                  d2 * (1.0 - 1e-9))
+            << r.balls[i].name << " and " << r.balls[j].name << " at t " << t;
+}
+
 TEST(ShotSimulatorBalls, NewtonsCradleSendsOnlyTheLastBallOn) {
   // Two balls touching in a line, struck full by a cue ball with no spin at contact;
   // e = 1 and no friction between the balls: pair by pair, the cue ball stops, the
