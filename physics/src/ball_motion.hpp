@@ -149,6 +149,8 @@ inline double entry_time(const Quadratic& q, double horizon, Vec2 c, double r) {
 struct Meeting {
   double time = kNever;
   bool touching = false;
+  double parts = kNever;  // where, after a crossing into 2R, the paths part again (if
+                          // within the horizon): how far a graze reaches
 };
 
 // The first contact in (after, horizon] - in [0, horizon] when `after` is negative - of
@@ -173,11 +175,15 @@ inline Meeting contact_time(const Quadratic& qi, const Quadratic& qj, double hor
   const int n = roots_in(c, 4, 0.0, horizon, roots);
   for (int k = 0; k < n; ++k) {
     const double t = roots[k];
-    const double df = evaluate(slope, 3, t);
-    if (df > 0.0 && rises_at == kNever) rises_at = t;
+    // Which way f crosses: its sign half-way to the next root (or to the horizon), far
+    // from both, rather than f' at the root, which rounding decides for balls that move
+    // together.
+    const double beyond = k + 1 < n ? 0.5 * (t + roots[k + 1]) : 0.5 * (t + horizon);
+    const double next = beyond > t ? evaluate(c, 4, beyond) : evaluate(slope, 3, t);
+    if (next > 0.0 && rises_at == kNever) rises_at = t;
     // The distance falls through 2R here: an approach, not a parting.
-    if (t > after && df < 0.0) {
-      if (c[0] > 0.0 || rises_at < t) return {t, false};
+    if (t > after && next < 0.0) {
+      if (c[0] > 0.0 || rises_at < t) return {t, false, k + 1 < n ? roots[k + 1] : kNever};
       break;  // touching until then: the turn below comes first
     }
   }

@@ -26,6 +26,8 @@ using detail::operator*;
 constexpr double kDegree = std::numbers::pi / 180.0;
 // Events this close in time (s) are taken in the contract's fixed order.
 constexpr double kTie = 1e-12;
+// Balls pressed together that would roll on less than this (m) are put at rest.
+constexpr double kSettleDistance = 1e-6;
 
 // The contract's order of event kinds within kTie of each other: ball-ball, cushion,
 // pocket, obstacle contact, motion change.
@@ -100,6 +102,7 @@ struct PairContact {
   double root = 0.0;      // time - from
   double horizon = 0.0;   // s after `from` that the search covered
   bool touching = false;  // they touched already when they began to approach
+  double parts = kNever;  // s after `from`: where the paths part again after `root`
 };
 
 // The next event of the shot.
@@ -108,7 +111,7 @@ struct Next {
   double time = kNever;  // s since the strike
   int ball = -1;         // whose (the lower index for a ball-ball contact)
   int other = -1;        // the other ball of a contact; else the cushion, pocket or obstacle
-  bool pressed = false;  // a contact of balls that touch with no approach speed left
+  bool pressed = false;  // balls that touch with no approach speed left, pressed together
 };
 
 // True when `a` goes before `b` among events within kTie of each other.
@@ -208,17 +211,19 @@ class ShotRun {
       if (next.type != EventType::ball_contact) return next;
       // The contact's balls must approach along their line of centres where they meet,
       // as the collision model asks. A graze that rounding makes a parting is no
-      // contact, and the pair's next root is looked for; but balls that touch and that
-      // their paths press together with no approach speed left are a push, which is
-      // not modelled (like a ball pressed into a cushion).
+      // contact, and the pair's next contact after the graze is looked for; but balls
+      // that touch and that their paths press together with no approach speed left are
+      // a push, which is not modelled (like a ball pressed into a cushion).
       if (approaching(next)) return next;
       PairContact& pair = pair_of(next.ball, next.other);
-      if (pair.touching) {
+      if (pair.touching || pair.parts == kNever) {
+        // Touching already, or crossing into 2R without parting again within their
+        // pieces: pressed together.
         Next pressed = next;
         pressed.pressed = true;
         return pressed;
       }
-      search_pair(next.ball, next.other, pair.root);
+      search_pair(next.ball, next.other, pair.parts);
     }
   }
 
@@ -359,21 +364,23 @@ class ShotRun {
                                                          pair.horizon, 2.0 * cloth_.radius, after);
     pair.root = contact.time;
     pair.touching = contact.touching;
+    pair.parts = contact.parts;
     pair.time = contact.time < kNever ? pair.from + contact.time : kNever;
   }
 
-  // The earliest event of all; those within kTie of it in the contract's order, all at the
-  // first one's time.
+  // The earliest event of all; of those within kTie of it, the contract's order decides
+  // which contact comes first, resolved at the first one's time.
   Next earliest() const {
     double first = kNever;
     for (const BallRun& r : runs_)
       if (r.on_table) first = std::min(first, r.own_time());
     for (const PairContact& p : pairs_) first = std::min(first, p.time);
-    Next best;
+    Next best, soonest;
     if (first == kNever) return best;
     const double window = first + kTie;
     const auto consider = [&](const Next& c) {
       if (c.time <= window && (best.time == kNever || earlier_in_order(c, best))) best = c;
+      if (c.time < soonest.time) soonest = c;
     };
     for (size_t k = 0; k < runs_.size(); ++k) {
       const BallRun& r = runs_[k];
@@ -388,7 +395,11 @@ class ShotRun {
             consider({EventType::ball_contact, p.time, static_cast<int>(i), static_cast<int>(j)});
         }
     }
-    best.time = first;  // the window's events are simultaneous, at its first time
+    // When the window holds no contact, only motion changes, which leave other balls
+    // alone whatever their order: each at its own time (one resolved early would set a
+    // ball rolling before its slip is spent).
+    if (rank(best.type) == rank(EventType::rest)) return soonest;
+    best.time = first;  // the window's contacts are simultaneous, at its first time
     return best;
   }
 
@@ -475,11 +486,7 @@ class ShotRun {
         break;
       case EventType::ball_contact:
         if (next.pressed)
-          end_shot(ShotStatus::collision_failed,
-                   fmt::format("balls {} and {}: pressed together with no approach speed left "
-                               "(a sustained push is not modelled)",
-                               result_->balls[static_cast<size_t>(next.ball)].name,
-                               result_->balls[static_cast<size_t>(next.other)].name));
+          settle_pressed(next.ball, next.other);
         else
           collide(next.ball, next.other);
         break;
@@ -562,6 +569,13 @@ class ShotRun {
       a.p = a.p - shift;
       b.p = b.p + shift;
     }
+    // Two balls that leave a contact barely moving would go on touching in ever smaller
+    // contacts as friction brings them together again (a ball rolling up to another):
+    // they come to rest here, which moves them by less than kSettleDistance.
+    if (crawling(a) && crawling(b)) {
+      stop(&a);
+      stop(&b);
+    }
     log(i, EventType::ball_contact, -1, -1, approach, j, out.impulse_total);
     log(j, EventType::ball_contact, -1, -1, approach, i, out.impulse_total);
     for (const int k : {i, j}) {
@@ -570,6 +584,39 @@ class ShotRun {
       r.check_cushions = cushions_in_reach(r.b);
     }
     if (i == 0 && result_->first_contact < 0) result_->first_contact = j;
+  }
+
+  // Balls i and j touch with no approach speed left while friction presses them together:
+  // a push, which the collision model does not describe. Balls that barely move - each
+  // would roll on less than kSettleDistance - are put at rest where they are (a ball
+  // rolling up to another ends the shot this way); a faster push ends the shot (as a
+  // ball pressed into a cushion does).
+  void settle_pressed(int i, int j) {
+    BallRun& a = runs_[static_cast<size_t>(i)];
+    BallRun& b = runs_[static_cast<size_t>(j)];
+    if (!crawling(a.b) || !crawling(b.b)) {
+      end_shot(ShotStatus::collision_failed,
+               fmt::format("balls {} and {}: pressed together with no approach speed left "
+                           "(a sustained push is not modelled)",
+                           result_->balls[static_cast<size_t>(i)].name,
+                           result_->balls[static_cast<size_t>(j)].name));
+      return;
+    }
+    for (BallRun* r : {&a, &b}) {
+      stop(&r->b);
+      r->changed = true;  // at rest: its rest is logged with its new piece
+    }
+  }
+
+  // Whether a ball barely moves: it would roll on less than kSettleDistance.
+  bool crawling(const Ball& b) const {
+    const double crawl = std::sqrt(2.0 * cloth_.roll_decel * kSettleDistance);  // m/s
+    return detail::norm(b.v) <= crawl && cloth_.radius * std::hypot(b.w.x, b.w.y) <= crawl;
+  }
+
+  static void stop(Ball* b) {
+    b->v = {0.0, 0.0};
+    b->w.x = b->w.y = 0.0;
   }
 
   // What rounding leaves of a ball's motion after a collision, far below the model's own

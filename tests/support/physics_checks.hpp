@@ -231,6 +231,86 @@ inline Vec2 position_at(const BallOutcome& b, double t) {
   return p;
 }
 
+// What walking every ball of a shot and the contacts between them found.
+struct ContactAudit {
+  int contacts = 0;
+  bool paired = true;            // every contact logged for both its balls, at one time
+  double max_gap = 0.0;          // largest |distance - 2R| at a contact, in units of 2R
+  double max_energy_gain = 0.0;  // largest relative rise of two balls' kinetic energy
+                                 // across their contact
+  double max_overlap = 0.0;      // deepest two balls (or a ball and an obstacle) overlap,
+                                 // in units of 2R, at every event and half-way along
+                                 // every segment up to the shot's end
+};
+
+// Each contact of balls i < j from both balls' events and audits (audits[k] =
+// audit_path of ball k): the n-th contact of i with j is the n-th of j with i.
+inline ContactAudit audit_contacts(const Scene& s, const ShotResult& r,
+                                   const std::vector<PathAudit>& audits) {
+  ContactAudit out;
+  const double d2 = 2.0 * s.radius();
+  for (size_t k = 0; k < r.balls.size(); ++k) {
+    size_t seen = 0;
+    std::vector<int> with(r.balls.size(), 0);  // contacts with each other ball so far
+    for (const ShotEvent& e : r.balls[k].events) {
+      if (e.type != EventType::ball_contact) continue;
+      const PathAudit::Contact& mine = audits[k].contacts.at(seen++);
+      const int nth = with.at(static_cast<size_t>(e.other))++;
+      if (e.other < static_cast<int>(k)) continue;  // counted from the lower index
+      ++out.contacts;
+      const size_t j = static_cast<size_t>(e.other);
+      const ShotEvent* theirs = nullptr;
+      const PathAudit::Contact* their_energy = nullptr;
+      size_t n = 0;
+      int theirs_nth = 0;
+      for (const ShotEvent& f : r.balls[j].events) {
+        if (f.type != EventType::ball_contact) continue;
+        if (f.other == static_cast<int>(k) && theirs_nth++ == nth && f.time == e.time) {
+          theirs = &f;
+          their_energy = &audits[j].contacts.at(n);
+        }
+        ++n;
+      }
+      if (theirs == nullptr) {
+        out.paired = false;
+        continue;
+      }
+      const double gap = std::abs(
+          std::hypot(e.position.x - theirs->position.x, e.position.y - theirs->position.y) - d2);
+      out.max_gap = std::max(out.max_gap, gap / d2);
+      const double before = mine.before + their_energy->before;
+      const double after = mine.after + their_energy->after;
+      if (before > 0.0) out.max_energy_gain = std::max(out.max_energy_gain, (after - before) / before);
+    }
+  }
+  // Overlaps, where every ball is at each event time and half-way along each segment.
+  std::vector<double> times;
+  double end = 0.0;
+  for (const BallOutcome& b : r.balls) {
+    for (const ShotEvent& e : b.events) times.push_back(e.time), end = std::max(end, e.time);
+    for (const PathSegment& seg : b.path) times.push_back(0.5 * (seg.t0 + seg.t1));
+  }
+  const auto on_table = [](const BallOutcome& b, double t) {
+    return !b.pocketed || b.events.back().time > t;
+  };
+  std::vector<Vec2> at(r.balls.size());
+  for (const double t : times) {
+    if (t > end) continue;
+    for (size_t k = 0; k < r.balls.size(); ++k) at[k] = position_at(r.balls[k], t);
+    for (size_t i = 0; i < r.balls.size(); ++i) {
+      if (!on_table(r.balls[i], t)) continue;
+      for (size_t j = i + 1; j < r.balls.size(); ++j)
+        if (on_table(r.balls[j], t))
+          out.max_overlap = std::max(
+              out.max_overlap, (d2 - std::hypot(at[i].x - at[j].x, at[i].y - at[j].y)) / d2);
+      for (const Vec2& o : s.obstacles)
+        out.max_overlap =
+            std::max(out.max_overlap, (d2 - std::hypot(at[i].x - o.x, at[i].y - o.y)) / d2);
+    }
+  }
+  return out;
+}
+
 // The cue ball's (ShotResult::events and ::path).
 inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4) {
   return audit_path(s, r.events, r.path, samples);

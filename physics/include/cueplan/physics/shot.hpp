@@ -212,7 +212,11 @@ struct SimulationOptions {
   ImpactMethod impact_method = ImpactMethod::exact;
   double impact_accuracy = 1e-9;        // relative error wanted from each impact
   const ImpactTable* table = nullptr;   // used when impact_method is table
-  int max_events = 200;                 // bound on the events of all balls together
+  // Bound on the events of all balls together: checked before each event, so a shot
+  // stopped by it (event_limit) holds max_events + 1 events, or up to 4 more with
+  // object balls (a contact logs one for each ball, balls stopping at one instant one
+  // each).
+  int max_events = 200;
   bool record_path = true;              // fill the path of ShotResult and of each ball
 };
 
