@@ -4,7 +4,8 @@
 #   bench/callgrind_ab.sh OLD_CUEPLAN NEW_CUEPLAN
 # Work: `simulate --batch` of 2000 seeded random strokes on a shipped problem (3 obstacle
 # balls) and on a generated table with 15 obstacle balls, and `solve --method exact` on
-# both (1 thread). Checks that both binaries print the same results (time_s aside).
+# both (1 thread). Checks that both binaries print the same results (time_s aside; keys
+# and columns only one of them prints are left out).
 set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 OLD_CUEPLAN NEW_CUEPLAN" >&2; exit 2; }
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -48,16 +49,27 @@ for case in "simulate blocked_direct_route|simulate $root/problems/blocked_direc
   b=$(count "$2" "$work/b.out" "${args[@]}")
   same=same
   if ! python3 - "$work/a.out" "$work/b.out" <<'PY'
-import json, sys
+import csv, io, json, sys
+# What both binaries print: JSON keys present in both (a newer binary may add keys), CSV
+# columns of both headers (a newer one may append columns); time_s aside.
+def common(a, b):
+    if isinstance(a, dict) and isinstance(b, dict):
+        keys = [k for k in a if k in b and k != "time_s"]
+        return [common(a[k], b[k]) for k in keys], [common(b[k], a[k]) for k in keys]
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
+        pairs = [common(x, y) for x, y in zip(a, b)]
+        return [p[0] for p in pairs], [p[1] for p in pairs]
+    return a, b
 def load(p):
     text = open(p).read()
     try:
-        j = json.loads(text)
-        j.pop("time_s", None)
-        return j
+        return json.loads(text)
     except ValueError:
-        return text
-sys.exit(0 if load(sys.argv[1]) == load(sys.argv[2]) else 1)
+        rows = list(csv.reader(io.StringIO(text)))
+        return [dict(zip(rows[0], r)) for r in rows[1:]] if rows else text
+a, b = load(sys.argv[1]), load(sys.argv[2])
+x, y = common(a, b)
+sys.exit(0 if x == y else 1)
 PY
   then same="OUTPUTS DIFFER"; fi
   printf '%-44s %15s %15s %8.4f  %s\n' "$label" "$a" "$b" "$(python3 -c "print($b/$a)")" "$same"

@@ -62,7 +62,9 @@ void write_batch_rows(const BatchInput& input, size_t input_columns,
     cells.push_back(outcomes[i].status);
     std::string line = csv_line(cells);
     line.pop_back();  // its newline: the quoted message follows
-    out << line << ',' << csv_quoted(outcomes[i].message) << '\n';
+    out << line << ',' << csv_quoted(outcomes[i].message);
+    for (const std::string& cell : outcomes[i].after_message) out << ',' << csv_field(cell);
+    out << '\n';
   }
 }
 

@@ -35,11 +35,15 @@ struct BatchOutcome {
   std::string status;
   std::string message;
   std::vector<std::string> results;
+  // Cells written after the message: columns added later, so the earlier ones keep their
+  // places.
+  std::vector<std::string> after_message = {};
 };
 
 // Writes one output line per input row: its first `input_columns` cells (trimmed, empty
-// where the row is short), the outcome's results, its status and its message, which is
-// always quoted because it is free text. The header line is the caller's.
+// where the row is short), the outcome's results, its status, its message, which is
+// always quoted because it is free text, and its after_message cells. The header line
+// is the caller's.
 void write_batch_rows(const BatchInput& input, size_t input_columns,
                       std::vector<BatchOutcome> outcomes, std::ostream& out);
 

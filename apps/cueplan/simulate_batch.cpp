@@ -18,8 +18,21 @@ namespace phys = cueplan::physics;
 constexpr size_t kInputColumns = 4;
 constexpr size_t kResultColumns = 8;  // final_x .. reaches_target
 
+constexpr size_t kColumnsAfterMessage = 2;  // first_contact, pocketed_balls
+
 BatchOutcome failed(std::string status, std::string message) {
-  return {std::move(status), std::move(message), std::vector<std::string>(kResultColumns)};
+  return {std::move(status), std::move(message), std::vector<std::string>(kResultColumns),
+          std::vector<std::string>(kColumnsAfterMessage)};
+}
+
+// The object balls pocketed, NAME:POCKET joined by ';'.
+std::string pocketed_balls(const problems::Problem& problem, const phys::ShotResult& r) {
+  std::string cell;
+  for (size_t k = 1; k < r.balls.size(); ++k)
+    if (r.balls[k].pocketed)
+      cell += (cell.empty() ? "" : ";") + r.balls[k].name + ":" +
+              problems::pocket_name(problem.scene, r.balls[k].pocket);
+  return cell;
 }
 
 // What a good row's message says: why the simulator stopped early, a shot outside the
@@ -74,6 +87,9 @@ BatchOutcome simulate_row(const BatchRow& row, const problems::Problem& problem,
                      format_number(r.duration),
                      format_number(problems::miss_distance(problem, r)),
                      problems::reaches_target(problem, r) ? "1" : "0"};
+  outcome.after_message = {
+      r.first_contact > 0 ? r.balls[static_cast<size_t>(r.first_contact)].name : "",
+      pocketed_balls(problem, r)};
   return outcome;
 }
 

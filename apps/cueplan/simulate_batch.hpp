@@ -5,10 +5,12 @@
 //         (V m/s, aim deg from +x, k_T, k_S); blank lines are skipped.
 // Output: the input columns, then final_x, final_y (m), cushion_hits, pocketed and
 //         hit_obstacle (1 or 0), duration (s), miss_distance (m from the target; inf
-//         unless the ball came to rest), reaches_target (1 or 0), status and a quoted
-//         message. A bad row gets status parse_error or invalid_input and empty result
-//         cells; the others are unaffected. Rows come out in input order, identical for
-//         any thread count.
+//         unless the ball came to rest), reaches_target (1 or 0), status, a quoted
+//         message, then first_contact (the object ball the cue ball struck first, or
+//         empty) and pocketed_balls (the object balls pocketed, NAME:POCKET joined by ';',
+//         in the order of the file's balls). A bad row gets status parse_error or
+//         invalid_input and empty result cells; the others are unaffected. Rows come out
+//         in input order, identical for any thread count.
 #pragma once
 
 #include <iosfwd>
@@ -24,7 +26,7 @@ namespace cueplan::cli {
 inline constexpr const char* kShotBatchHeader = "speed,aim_deg,topspin_k,sidespin_k";
 inline constexpr const char* kShotBatchResultHeader =
     "final_x,final_y,cushion_hits,pocketed,hit_obstacle,duration,miss_distance,reaches_target,"
-    "status,message";
+    "status,message,first_contact,pocketed_balls";
 
 // How the caller spells a shot's inputs in its messages (flags or CSV columns).
 struct ShotNames {

@@ -30,16 +30,30 @@ std::string point(phys::Vec2 p) { return "(" + number(p.x) + ", " + number(p.y) 
 
 double speed_of(const phys::ShotEvent& e) { return std::hypot(e.velocity.x, e.velocity.y); }
 
-// How the ball moves after an event: the path piece that starts there, if any.
-const char* motion_after(const phys::ShotResult& r, const phys::ShotEvent& e) {
-  for (const phys::PathSegment& s : r.path)
+// How the ball moves after an event: the piece of its path that starts there, if any.
+const char* motion_after(const phys::BallOutcome& ball, const phys::ShotEvent& e) {
+  for (const phys::PathSegment& s : ball.path)
     if (s.t0 == e.time) return phys::to_string(s.motion);
   return "-";
 }
 
-std::string event_detail(const prob::Problem& problem, const phys::ShotEvent& e) {
+// The name of ball k of a result (0: the cue ball).
+const std::string& ball_name(const phys::ShotResult& r, int k) {
+  return r.balls.at(static_cast<size_t>(k)).name;
+}
+
+// The first ball the cue ball struck, by name, or none.
+std::string first_contact_name(const phys::ShotResult& r) {
+  return r.first_contact > 0 ? ball_name(r, r.first_contact) : std::string();
+}
+
+std::string event_detail(const prob::Problem& problem, const phys::ShotResult& r,
+                         const phys::ShotEvent& e) {
   const phys::Scene& scene = problem.scene;
   switch (e.type) {
+    case phys::EventType::ball_contact:
+      return "ball " + ball_name(r, e.other) + ", approach " + number(e.normal_speed, "m/s") +
+             ", impulse " + number(e.impulse, "N s");
     case phys::EventType::cushion: {
       std::string text = "cushion " + cushion_name(scene, e.cushion) + ", normal speed " +
                          number(e.normal_speed, "m/s");
@@ -48,8 +62,8 @@ std::string event_detail(const prob::Problem& problem, const phys::ShotEvent& e)
       return text;
     }
     case phys::EventType::pocket:
-      return "pocket " + std::to_string(e.index) + " at " +
-             point(scene.pockets.at(static_cast<size_t>(e.index)).centre);
+      return "pocket " + std::to_string(e.index) + " (" + prob::pocket_name(scene, e.index) +
+             ") at " + point(scene.pockets.at(static_cast<size_t>(e.index)).centre);
     case phys::EventType::obstacle:
       return "obstacles[" + std::to_string(e.index) + "] at " +
              point(scene.obstacles.at(static_cast<size_t>(e.index)));
@@ -68,7 +82,12 @@ std::string status_text(const phys::ShotResult& r) {
     case phys::ShotStatus::pocketed:
       return text + " (entered pocket " + std::to_string(r.events.back().index) + ")";
     case phys::ShotStatus::hit_obstacle:
-      return text + " (touched obstacles[" + std::to_string(r.events.back().index) + "])";
+      // The ball that touched it: its last event is the contact.
+      for (const phys::BallOutcome& b : r.balls)
+        if (!b.events.empty() && b.events.back().type == phys::EventType::obstacle)
+          return text + " (" + (b.name == phys::kCueBallName ? "" : b.name + " ") +
+                 "touched obstacles[" + std::to_string(b.events.back().index) + "])";
+      return text;
     default:
       return text + ": " + r.message;
   }
@@ -97,6 +116,24 @@ TargetReport target_report(const prob::Problem& problem, const phys::Shot& shot,
   t.reaches = prob::reaches_target(problem, r);
   t.limits = prob::check_shot(problem.limits, shot);
   return t;
+}
+
+// One ball's events as a table under `label`.
+void write_events(std::ostream& out, const prob::Problem& problem, const phys::ShotResult& r,
+                  const phys::BallOutcome& ball, const std::string& label) {
+  report_line(out, label,
+              std::to_string(ball.events.size()) + " (speed and motion just after each event)");
+  out << fmt::format("  {:>3}  {:<14} {:>9} {:>9} {:>9} {:>11}  {:<8} {}\n", "#", "event", "t (s)",
+                     "x (m)", "y (m)", "v (m/s)", "then", "detail");
+  for (size_t i = 0; i < ball.events.size(); ++i) {
+    const phys::ShotEvent& e = ball.events[i];
+    std::string row = fmt::format("  {:3}  {:<14} {:9.4f} {:9.4f} {:9.4f} {:11.4f}  {:<8} ", i,
+                                  phys::to_string(e.type), e.time, e.position.x, e.position.y,
+                                  speed_of(e), motion_after(ball, e)) +
+                      event_detail(problem, r, e);
+    while (!row.empty() && row.back() == ' ') row.pop_back();
+    out << row << '\n';
+  }
 }
 
 void write_text(std::ostream& out, const prob::Problem& problem, const phys::Shot& shot,
@@ -153,44 +190,42 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
                               number(scene.ball_and_cushion.rigid_speed_limit, "m/s") + ")");
   if (!svg_file.empty()) line("drawing", svg_file);
 
-  line("events", std::to_string(r.events.size()) + " (speed and motion just after each event)");
-  std::string buf;
-  buf = fmt::format("  {:>3}  {:<14} {:>9} {:>9} {:>9} {:>11}  {:<8} {}", "#", "event", "t (s)",
-                "x (m)", "y (m)", "v (m/s)", "then", "detail");
-  out << buf << '\n';
-  for (size_t i = 0; i < r.events.size(); ++i) {
-    const phys::ShotEvent& e = r.events[i];
-    buf = fmt::format("  {:3}  {:<14} {:9.4f} {:9.4f} {:9.4f} {:11.4f}  {:<8} ", i,
-                  phys::to_string(e.type), e.time, e.position.x, e.position.y, speed_of(e),
-                  motion_after(r, e));
-    std::string row = buf + event_detail(problem, e);
-    while (!row.empty() && row.back() == ' ') row.pop_back();
-    out << row << '\n';
+  if (r.balls.size() > 1) {
+    line("first contact", r.first_contact > 0 ? first_contact_name(r) : "none");
+    line("balls", std::to_string(r.balls.size()) + " (the cue ball first)");
+    out << fmt::format("  {:<12} {:>9} {:>9}  {:<22} {:>8} {:>6}\n", "ball", "x (m)", "y (m)",
+                       "pocketed", "cushions", "events");
+    for (const phys::BallOutcome& b : r.balls) {
+      const std::string pocketed =
+          b.pocketed ? "yes, " + prob::pocket_name(scene, b.pocket) : std::string("no");
+      out << fmt::format("  {:<12} {:9.4f} {:9.4f}  {:<22} {:>8} {:>6}\n", b.name,
+                         b.final_position.x, b.final_position.y, pocketed, b.cushion_hits,
+                         b.events.size());
+    }
+  }
+  for (size_t k = 0; k < r.balls.size(); ++k) {
+    const phys::BallOutcome& ball = r.balls[k];
+    if (k > 0 && ball.events.empty()) continue;
+    write_events(out, problem, r, ball, k == 0 ? "events" : "events of " + ball.name);
   }
   if (r.rigid_limit_exceeded) out << rigid_limit_warning(problem, r) << '\n';
 }
 
 nlohmann::ordered_json vec(phys::Vec2 v) { return {v.x, v.y}; }
 
-}  // namespace
-
-nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::Shot& shot,
-                const phys::SimulationOptions& options, const phys::ShotResult& r,
-                const std::string& svg_file, const std::optional<SimulatedSuccess>& success) {
-  using nlohmann::ordered_json;
-  const phys::Scene& scene = problem.scene;
-  const TargetReport target = target_report(problem, shot, r);
-
-  ordered_json events = ordered_json::array();
-  for (const phys::ShotEvent& e : r.events) {
-    ordered_json j;
+// One ball's events as JSON.
+nlohmann::ordered_json events_json(const phys::Scene& scene, const phys::ShotResult& r,
+                                   const phys::BallOutcome& ball) {
+  nlohmann::ordered_json events = nlohmann::ordered_json::array();
+  for (const phys::ShotEvent& e : ball.events) {
+    nlohmann::ordered_json j;
     j["type"] = phys::to_string(e.type);
     j["time"] = e.time;
     j["position"] = vec(e.position);
     j["velocity"] = vec(e.velocity);
     j["speed"] = speed_of(e);
     j["spin"] = {e.spin.x, e.spin.y, e.spin.z};
-    j["motion_after"] = motion_after(r, e);
+    j["motion_after"] = motion_after(ball, e);
     if (e.type == phys::EventType::cushion) {
       j["cushion"] = e.cushion;
       j["cushion_line"] = cushion_name(scene, e.cushion);
@@ -198,16 +233,48 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
     }
     if (e.type == phys::EventType::pocket) j["pocket"] = e.index;
     if (e.type == phys::EventType::obstacle) j["obstacle"] = e.index;
+    if (e.type == phys::EventType::ball_contact) {
+      j["ball"] = ball_name(r, e.other);
+      j["approach_speed"] = e.normal_speed;
+      j["impulse"] = e.impulse;
+    }
     events.push_back(std::move(j));
   }
-  ordered_json path = ordered_json::array();
-  for (const phys::PathSegment& s : r.path)
-    path.push_back({{"t0", s.t0},
-                    {"t1", s.t1},
-                    {"p0", vec(s.p0)},
-                    {"v0", vec(s.v0)},
-                    {"accel", vec(s.accel)},
-                    {"motion", phys::to_string(s.motion)}});
+  return events;
+}
+
+nlohmann::ordered_json path_json(const std::vector<phys::PathSegment>& path) {
+  nlohmann::ordered_json segments = nlohmann::ordered_json::array();
+  for (const phys::PathSegment& s : path)
+    segments.push_back({{"t0", s.t0},
+                        {"t1", s.t1},
+                        {"p0", vec(s.p0)},
+                        {"v0", vec(s.v0)},
+                        {"accel", vec(s.accel)},
+                        {"motion", phys::to_string(s.motion)}});
+  return segments;
+}
+
+}  // namespace
+
+nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::Shot& shot,
+                                     const phys::SimulationOptions& options,
+                                     const phys::ShotResult& r, const std::string& svg_file,
+                                     const std::optional<SimulatedSuccess>& success) {
+  using nlohmann::ordered_json;
+  const phys::Scene& scene = problem.scene;
+  const TargetReport target = target_report(problem, shot, r);
+
+  ordered_json balls = ordered_json::array();
+  for (const phys::BallOutcome& b : r.balls)
+    balls.push_back(
+        {{"name", b.name},
+         {"final_position", vec(b.final_position)},
+         {"pocketed", b.pocketed},
+         {"pocket", b.pocketed ? ordered_json(prob::pocket_name(scene, b.pocket)) : ordered_json()},
+         {"cushion_hits", b.cushion_hits},
+         {"events", events_json(scene, r, b)},
+         {"path", path_json(b.path)}});
 
   ordered_json j;
   j["problem"] = {{"name", problem.name}, {"source", problem.source}};
@@ -248,8 +315,11 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
   j["impact_accuracy"] = options.impact_accuracy;
   j["max_events"] = options.max_events;
   if (!svg_file.empty()) j["svg"] = svg_file;
-  j["events"] = events;
-  j["path"] = path;
+  j["events"] = r.balls.empty() ? ordered_json::array() : events_json(scene, r, r.balls[0]);
+  j["path"] = path_json(r.path);
+  // Every ball, the cue ball first (its entry repeats the keys above).
+  j["balls"] = balls;
+  j["first_contact"] = r.first_contact > 0 ? ordered_json(first_contact_name(r)) : ordered_json();
   j["units"] = {{"frame",
                  "table: origin where the cushion noses x = 0 and y = 0 meet, x along the "
                  "length, y along the width"},
@@ -260,6 +330,8 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
                 {"speed", "m/s"},
                 {"spin", "rad/s"},
                 {"accel", "m/s^2"},
+                {"approach_speed", "m/s, along the line of centres"},
+                {"impulse", "N s, normal"},
                 {"aim_deg", "deg from +x, counter-clockwise"},
                 {"topspin_k", "k_T = w_T R / V"},
                 {"sidespin_k", "k_S = w_S R / V, > 0 right spin"},
@@ -325,8 +397,9 @@ draw::TableScene drawing_of(const prob::Problem& problem, const phys::Shot& shot
 SimulateCommand::SimulateCommand(CLI::App& parent) {
   command_ = parent.add_subcommand(
       "simulate",
-      "Simulate one cue-ball shot on a problem file's table, from the strike to rest, and "
-      "report where it stops, every event and how far it lands from the target.");
+      "Simulate one cue-ball shot on a problem file's table, from the strike until every ball "
+      "rests, and report where the balls stop, every event and how far the cue ball lands "
+      "from the target.");
   CLI::App& c = *command_;
 
   c.add_option("PROBLEM", args_.problem_file,
@@ -389,7 +462,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   auto* json =
       c.add_flag("--json", args_.json,
                  "Print one JSON object (SI units, table frame) instead of text: final_position, "
-                 "cushion_hits, pocketed, hit_obstacle, events, duration, miss_distance, path, ...")
+                 "cushion_hits, pocketed, hit_obstacle, events, duration, miss_distance, path "
+                 "(the cue ball's), balls (every ball: name, final_position, pocketed, pocket, "
+                 "cushion_hits, events, path), first_contact, ...")
           ->group(output);
   auto* svg = c.add_option("--svg", args_.svg_file,
                            "Also draw the table, pockets, obstacles, target zone and the ball's "
@@ -403,7 +478,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
                    "'speed,aim_deg,topspin_k,sidespin_k' (m/s, deg, k_T, k_S) and write CSV to "
                    "stdout: the input columns, then final_x,final_y (m),cushion_hits,pocketed,"
                    "hit_obstacle (1/0),duration (s),miss_distance (m; inf unless at rest),"
-                   "reaches_target (1/0),status,message. A bad row gets its own error status.")
+                   "reaches_target (1/0),status,message,first_contact (the object ball the cue "
+                   "ball struck first),pocketed_balls (NAME:POCKET;...). A bad row gets its own "
+                   "error status.")
           ->type_name("FILE.csv")
           ->group(output);
   const char* noise = "Success under a player's noise";
@@ -443,12 +520,15 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   c.footer(
       "Frame: the origin is where the cushion noses x = 0 and y = 0 meet; x runs along the "
       "length, y along the width; cushions are named by their nose lines.\n"
-      "Status: rest, pocketed, hit_obstacle, event_limit (more than --max-events events) or "
-      "impact_failed. A cushion met faster than " +
+      "Status (of the cue ball; the object balls' outcomes are listed with them): rest, "
+      "pocketed, hit_obstacle (any ball touched an obstacle), event_limit (more than "
+      "--max-events events of all balls), impact_failed or collision_failed. A cushion met "
+      "faster than " +
       number(phys::CushionParams{}.rigid_speed_limit, "m/s") +
       " along its normal is solved but flagged: the rigid-cushion model is not trusted there.\n"
       "Exit codes: 0 simulated (at rest, pocketed or against an obstacle), 1 the simulation "
-      "stopped without an outcome (event_limit, impact_failed), 2 bad input.\n"
+      "stopped without an outcome (event_limit, impact_failed, collision_failed), 2 bad "
+      "input.\n"
       "Example: cueplan simulate problems/one_rail_position.yaml --speed 1.002 --aim -60.36 "
       "--topspin-k 0.8 --sidespin-k 0");
 }

@@ -1,29 +1,49 @@
+// The shot simulator: every ball from the strike to rest, event by event
+// (PHYSICS.md, "Several balls on the table").
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
-#include "cueplan/physics/impact_table.hpp"
+#include "ball_motion.hpp"
 #include "cueplan/physics/shot.hpp"
-#include "polynomial_roots.hpp"
 
 namespace cueplan::physics {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
-constexpr double kNever = std::numeric_limits<double>::infinity();
+using detail::Ball;
+using detail::ClothModel;
+using detail::dot;
+using detail::kNever;
+using detail::Piece;
+using detail::Quadratic;
+using detail::operator+;
+using detail::operator-;
+using detail::operator*;
 // An approach speed below this fraction of the ball's speed at a cushion that the cloth's
 // friction presses it into is the end of a run of ever smaller bounces: the ball is
 // pressed against the cushion.
 constexpr double kRoundingApproach = 1e-12;
 
-inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+constexpr double kDegree = std::numbers::pi / 180.0;
+// Events this close in time (s) are taken in the contract's fixed order.
+constexpr double kTie = 1e-12;
+// Balls pressed together that would roll on less than this (m) are put at rest.
+constexpr double kSettleDistance = 1e-6;
+
+// The contract's order of event kinds within kTie of each other: ball-ball, cushion,
+// pocket, obstacle contact, motion change.
+int rank(EventType type) {
+  switch (type) {
+    case EventType::ball_contact: return 0;
+    case EventType::cushion: return 1;
+    case EventType::pocket: return 2;
+    case EventType::obstacle: return 3;
+    default: return 4;
+  }
+}
 
 // The four cushions: outward normal n (from the ball into the cushion) and the
 // value of n . p at which the ball's centre touches the cushion.
@@ -40,284 +60,6 @@ std::array<CushionLine, 4> cushion_lines(const Scene& s) {
            {{-1.0, 0.0}, -off}}};
 }
 
-// The ball on the cloth.
-struct Ball {
-  Vec2 p;  // m
-  Vec2 v;  // m/s
-  Vec3 w;  // rad/s
-};
-
-// Rates of the cloth model (PHYSICS.md, "Ball on the cloth").
-struct ClothModel {
-  double radius;
-  double slide_decel;  // mu_s g
-  double roll_decel;   // mu_r g
-  double spin_decel;   // 5 mu_sp g / (2R), for w_z
-  double slide_spin;   // 5 mu_s g / (2R), for the horizontal spin while sliding
-
-  explicit ClothModel(const Scene& s)
-      : radius(s.radius()),
-        slide_decel(s.cloth.mu_slide * s.cloth.gravity),
-        roll_decel(s.cloth.mu_roll * s.cloth.gravity),
-        spin_decel(2.5 * s.cloth.mu_spin * s.cloth.gravity / s.radius()),
-        slide_spin(2.5 * s.cloth.mu_slide * s.cloth.gravity / s.radius()) {}
-
-  // Velocity of the contact point with the cloth: v + w x (-R z).
-  Vec2 slip(const Ball& b) const { return {b.v.x - radius * b.w.y, b.v.y + radius * b.w.x}; }
-};
-
-// A piece of motion with constant acceleration, from a state until its motion changes.
-struct Piece {
-  Motion motion = Motion::resting;
-  Vec2 accel;
-  Vec2 spin_rate;           // d(w_x, w_y)/dt while sliding
-  double duration = kNever;  // until slide to roll, or rest
-};
-
-Piece piece_from(const ClothModel& m, const Ball& b) {
-  Piece piece;
-  const Vec2 u = m.slip(b);
-  const double us = norm(u);
-  const double speed = norm(b.v);
-  const double scale = speed + m.radius * std::hypot(b.w.x, b.w.y);
-  if (us > 1e-12 * scale && us > 0.0) {
-    // Sliding: friction against the slip, which keeps its direction and shrinks
-    // at 7/2 mu_s g.
-    const Vec2 d = (1.0 / us) * u;
-    piece.motion = Motion::sliding;
-    piece.accel = -m.slide_decel * d;
-    piece.spin_rate = {-m.slide_spin * d.y, m.slide_spin * d.x};
-    piece.duration = 2.0 * us / (7.0 * m.slide_decel);
-  } else if (speed > 0.0) {
-    piece.motion = Motion::rolling;
-    piece.accel = (-m.roll_decel / speed) * b.v;
-    piece.duration = speed / m.roll_decel;
-  }
-  return piece;
-}
-
-void advance(const ClothModel& m, const Piece& piece, double dt, Ball* b) {
-  b->p = b->p + dt * b->v + (0.5 * dt * dt) * piece.accel;
-  b->v = b->v + dt * piece.accel;
-  if (piece.motion == Motion::sliding) {
-    b->w.x += piece.spin_rate.x * dt;
-    b->w.y += piece.spin_rate.y * dt;
-  } else {
-    b->w.x = -b->v.y / m.radius;
-    b->w.y = b->v.x / m.radius;
-  }
-  // Sidespin decays toward zero in every phase.
-  const double drop = m.spin_decel * dt;
-  b->w.z = b->w.z > 0.0 ? std::max(0.0, b->w.z - drop) : std::min(0.0, b->w.z + drop);
-}
-
-// Position coefficients of a piece: p(t) = a0 + a1 t + a2 t^2.
-struct Quadratic {
-  Vec2 a0, a1, a2;
-};
-
-// First time in [0, horizon] at which the centre enters the circle (c, r), or kNever.
-// The path's bounding box is tested first, which rules out most circles cheaply.
-double entry_time(const Quadratic& q, double horizon, Vec2 c, double r) {
-  auto range = [&](double p0, double v, double a2, double* lo, double* hi) {
-    const double end = p0 + v * horizon + a2 * horizon * horizon;
-    *lo = std::min(p0, end);
-    *hi = std::max(p0, end);
-    if (a2 != 0.0) {
-      const double t = -v / (2.0 * a2);
-      if (t > 0.0 && t < horizon) {
-        const double mid = p0 + v * t + a2 * t * t;
-        *lo = std::min(*lo, mid);
-        *hi = std::max(*hi, mid);
-      }
-    }
-  };
-  double xlo, xhi, ylo, yhi;
-  range(q.a0.x, q.a1.x, q.a2.x, &xlo, &xhi);
-  range(q.a0.y, q.a1.y, q.a2.y, &ylo, &yhi);
-  if (c.x + r < xlo || c.x - r > xhi || c.y + r < ylo || c.y - r > yhi) return kNever;
-
-  // |d(t)|^2 - r^2 with d = (a0 - c) + a1 t + a2 t^2: a quartic in t.
-  const Vec2 d0 = q.a0 - c;
-  const double coeff[5] = {dot(d0, d0) - r * r, 2.0 * dot(d0, q.a1),
-                           dot(q.a1, q.a1) + 2.0 * dot(d0, q.a2), 2.0 * dot(q.a1, q.a2),
-                           dot(q.a2, q.a2)};
-  if (coeff[0] <= 0.0) return coeff[1] < 0.0 || coeff[0] < 0.0 ? 0.0 : kNever;
-  double roots[detail::kMaxDegree];
-  const int n = detail::roots_in(coeff, 4, 0.0, horizon, roots);
-  return n > 0 ? roots[0] : kNever;
-}
-
-// Upper bound on how far the ball can still travel (sliding, then rolling to rest).
-double reach(const ClothModel& m, const Ball& b) {
-  const double slide_time = 2.0 * norm(m.slip(b)) / (7.0 * m.slide_decel);
-  const double top_speed = norm(b.v) + m.slide_decel * slide_time;
-  return top_speed * slide_time + top_speed * top_speed / (2.0 * m.roll_decel);
-}
-
-}  // namespace
-
-double Scene::contact_offset() const { return radius() * ball_and_cushion.cos_theta(); }
-
-Vec2 PathSegment::at(double t) const {
-  const double dt = t - t0;
-  return {p0.x + v0.x * dt + 0.5 * accel.x * dt * dt, p0.y + v0.y * dt + 0.5 * accel.y * dt * dt};
-}
-
-Validation Scene::validate() const {
-  if (Validation e = ball_and_cushion.validate()) return e->under({"ball_and_cushion"});
-  if (!std::isfinite(length) || !(length > 0.0))
-    return invalid({"length"}, "must be positive and finite (m)", length);
-  if (!std::isfinite(width) || !(width > 0.0))
-    return invalid({"width"}, "must be positive and finite (m)", width);
-  const double off = contact_offset();
-  if (!(length > 2.0 * off) || !(width > 2.0 * off)) {
-    // The shorter side is the one that leaves no room; the ball's radius sets the room
-    // it needs, so it is the rule's other field.
-    const bool length_short = !(length > 2.0 * off);
-    ValidationError e = invalid({length_short ? "length" : "width"},
-                                fmt::format("must leave room for a ball: more than 2 R cos(theta) "
-                                            "= {:.4g} m ({{other}} R = {:.4g} m)",
-                                            2.0 * off, radius()),
-                                length_short ? length : width);
-    e.other = FieldPath{"ball_and_cushion", "radius"};
-    return e;
-  }
-  if (!std::isfinite(cloth.mu_roll) || !(cloth.mu_roll > 0.0))
-    return invalid({"cloth", "mu_roll"},
-                   "must be positive and finite: without rolling resistance a ball never stops",
-                   cloth.mu_roll);
-  if (!std::isfinite(cloth.mu_slide) || !(cloth.mu_slide > 0.0))
-    return invalid({"cloth", "mu_slide"},
-                   "must be positive and finite: without sliding friction a ball never rolls",
-                   cloth.mu_slide);
-  if (!std::isfinite(cloth.mu_spin) || cloth.mu_spin < 0.0)
-    return invalid({"cloth", "mu_spin"}, "must be finite and not negative", cloth.mu_spin);
-  if (!std::isfinite(cloth.gravity) || !(cloth.gravity > 0.0))
-    return invalid({"cloth", "gravity"}, "must be positive and finite (m/s^2)", cloth.gravity);
-  for (size_t i = 0; i < pockets.size(); ++i) {
-    const Pocket& k = pockets[i];
-    const int index = static_cast<int>(i);
-    if (!std::isfinite(k.centre.x) || !std::isfinite(k.centre.y))
-      return invalid({"pockets", index, "centre"}, "must be finite (m)",
-                     std::isfinite(k.centre.x) ? k.centre.y : k.centre.x);
-    if (!std::isfinite(k.radius) || !(k.radius > 0.0))
-      return invalid({"pockets", index, "radius"}, "must be positive and finite (m)", k.radius);
-  }
-  const double r = radius();
-  for (size_t i = 0; i < obstacles.size(); ++i) {
-    const FieldPath name{"obstacles", static_cast<int>(i)};
-    const Vec2 o = obstacles[i];
-    if (!std::isfinite(o.x) || !std::isfinite(o.y))
-      return invalid(name, "must be finite (m)", std::isfinite(o.x) ? o.y : o.x);
-    if (o.x < off || o.x > length - off || o.y < off || o.y > width - off)
-      return invalid(name, fmt::format("lies off the table (its centre must be at least {} m "
-                                       "inside every cushion nose)",
-                                       std::to_string(off)));
-    for (size_t j = 0; j < i; ++j) {
-      if (norm(o - obstacles[j]) < 2.0 * r * (1.0 - 1e-9)) {
-        ValidationError e = invalid(name, "overlaps {other}");
-        e.other = FieldPath{"obstacles", static_cast<int>(j)};
-        return e;
-      }
-    }
-  }
-  return {};
-}
-
-Validation Scene::check_position(Vec2 p, const FieldPath& what) const {
-  if (!std::isfinite(p.x) || !std::isfinite(p.y))
-    return invalid(what, "must be finite (m)", std::isfinite(p.x) ? p.y : p.x);
-  const double off = contact_offset();
-  if (p.x < off || p.x > length - off || p.y < off || p.y > width - off)
-    return invalid(what, fmt::format("({:.4g}, {:.4g}) lies off the table: its centre must be "
-                                     "within [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m",
-                                     p.x, p.y, off, length - off, off, width - off));
-  for (size_t i = 0; i < pockets.size(); ++i) {
-    if (norm(p - pockets[i].centre) < pockets[i].radius) {
-      ValidationError e = invalid(what, "lies inside {other}");
-      e.other = FieldPath{"pockets", static_cast<int>(i)};
-      return e;
-    }
-  }
-  for (size_t i = 0; i < obstacles.size(); ++i) {
-    if (norm(p - obstacles[i]) < 2.0 * radius() * (1.0 - 1e-9)) {
-      ValidationError e = invalid(what, "overlaps {other}");
-      e.other = FieldPath{"obstacles", static_cast<int>(i)};
-      return e;
-    }
-  }
-  return {};
-}
-
-std::vector<Pocket> standard_pockets(double length, double width, double radius) {
-  return {{{0.0, 0.0}, radius},   {{length / 2, 0.0}, radius},   {{length, 0.0}, radius},
-          {{0.0, width}, radius}, {{length / 2, width}, radius}, {{length, width}, radius}};
-}
-
-Scene snooker_scene() {
-  Scene s;
-  s.pockets = standard_pockets(s.length, s.width, kDefaultPocketRadius);
-  return s;
-}
-
-Validation Shot::validate() const {
-  if (!std::isfinite(speed) || !(speed > 0.0))
-    return invalid({"speed"}, "must be positive and finite (m/s)", speed);
-  if (!std::isfinite(aim_deg)) return invalid({"aim_deg"}, "must be finite (deg)", aim_deg);
-  if (!std::isfinite(topspin_k)) return invalid({"topspin_k"}, "must be finite", topspin_k);
-  if (!std::isfinite(sidespin_k)) return invalid({"sidespin_k"}, "must be finite", sidespin_k);
-  return {};
-}
-
-CompiledScene::CompiledScene(Scene scene) : scene_(std::move(scene)), error_(scene_.validate()) {}
-
-const char* to_string(EventType type) {
-  switch (type) {
-    case EventType::strike: return "strike";
-    case EventType::slide_to_roll: return "slide_to_roll";
-    case EventType::spin_stop: return "spin_stop";
-    case EventType::cushion: return "cushion";
-    case EventType::pocket: return "pocket";
-    case EventType::obstacle: return "obstacle";
-    case EventType::rest: return "rest";
-  }
-  return "unknown";
-}
-
-const char* to_string(Motion motion) {
-  switch (motion) {
-    case Motion::sliding: return "sliding";
-    case Motion::rolling: return "rolling";
-    case Motion::resting: return "resting";
-  }
-  return "unknown";
-}
-
-const char* to_string(ShotStatus status) {
-  switch (status) {
-    case ShotStatus::rest: return "rest";
-    case ShotStatus::pocketed: return "pocketed";
-    case ShotStatus::hit_obstacle: return "hit_obstacle";
-    case ShotStatus::invalid_input: return "invalid_input";
-    case ShotStatus::event_limit: return "event_limit";
-    case ShotStatus::impact_failed: return "impact_failed";
-  }
-  return "unknown";
-}
-
-ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options) {
-  if (options.impact_method == ImpactMethod::paper) return ImpactMethod::paper;
-  if (options.impact_method == ImpactMethod::extrapolation) return ImpactMethod::extrapolation;
-  if (options.impact_method == ImpactMethod::table && options.table != nullptr &&
-      options.table->covers(scene.ball_and_cushion) &&
-      options.table->measured_error().max_state_relative <= options.impact_accuracy)
-    return ImpactMethod::table;
-  return ImpactMethod::exact;
-}
-
-namespace {
-
 // The stroke's own inputs, checked on every call (the scene was checked when compiled).
 Validation check_stroke(const Scene& scene, Vec2 cue_ball, const Shot& shot,
                         const SimulationOptions& options) {
@@ -328,90 +70,209 @@ Validation check_stroke(const Scene& scene, Vec2 cue_ball, const Shot& shot,
   return {};
 }
 
-// What ends the current piece of motion, and when.
+// What ends a ball's current piece of motion, and when.
 struct NextEvent {
   EventType type = EventType::rest;
-  double after = kNever;  // s from now
+  double after = kNever;  // s from the start of the piece
   int which = -1;         // cushion, pocket or obstacle index
 };
 
-// One shot from the strike to rest, as stages run in order for every piece of motion:
-//   1. next_event - the piece's own end (slide to roll, rest), the sidespin stop, then
-//                   the first contact before either (cushion, pocket, obstacle);
-//   2. advance    - the ball moves along the piece to that event (path recorded);
-//   3. resolve    - the event changes the ball's state (a cushion through the impact
-//                   model) and is logged; pockets, obstacles and failures end the shot.
+// One ball during the shot. Its state is kept at the start of its current piece of
+// motion; where it is later follows in closed form, so a ball that no event touches is
+// never stepped.
+struct BallRun {
+  Ball b;           // state at t0
+  double t0 = 0.0;  // s, when its current piece started
+  Piece piece;
+  NextEvent own;  // its next event of its own (after: from t0)
+  bool on_table = true;
+  bool moving = false;          // its piece is not resting
+  bool changed = false;         // an event changed its state: piece and events to find again
+  bool check_cushions = false;  // whether a cushion lies within its reach
+
+  double own_time() const { return moving ? t0 + own.after : kNever; }
+  // Its path about the instant `t`, within its current piece.
+  Quadratic path_at(double t) const {
+    if (!moving) return {b.p, {0.0, 0.0}, {0.0, 0.0}};
+    const double s = t - t0;
+    return {b.p + s * b.v + (0.5 * s * s) * piece.accel, b.v + s * piece.accel, 0.5 * piece.accel};
+  }
+};
+
+// When two balls next touch while approaching, found when either last changed.
+struct PairContact {
+  double time = kNever;   // s since the strike
+  double from = 0.0;      // s, the instant both paths were taken about
+  double root = 0.0;      // time - from
+  double horizon = 0.0;   // s after `from` that the search covered
+  bool touching = false;  // they touched already when they began to approach
+  double parts = kNever;  // s after `from`: where the paths part again after `root`
+};
+
+// The next event of the shot.
+struct Next {
+  EventType type = EventType::rest;
+  double time = kNever;  // s since the strike
+  int ball = -1;         // whose (the lower index for a ball-ball contact)
+  int other = -1;        // the other ball of a contact; else the cushion, pocket or obstacle
+  bool pressed = false;  // balls that touch with no approach speed left, pressed together
+};
+
+// True when `a` goes before `b` among events within kTie of each other.
+bool earlier_in_order(const Next& a, const Next& b) {
+  if (rank(a.type) != rank(b.type)) return rank(a.type) < rank(b.type);
+  if (a.ball != b.ball) return a.ball < b.ball;
+  return a.other < b.other;
+}
+
+// One shot from the strike until every ball rests, as stages run in order for every
+// event of the shot:
+//   1. find_next_event - balls the last event changed get their new piece of motion,
+//                        own next event (slide to roll, rest, sidespin stop, cushion,
+//                        pocket, obstacle) and next contacts with the other balls; then
+//                        the earliest event of all, ties in the contract's order;
+//   2. advance         - the shot's clock moves to that event, and the balls it involves
+//                        move along their pieces to it (paths recorded); every other
+//                        ball's piece runs on unchanged;
+//   3. resolve         - the event changes the balls' states (a cushion through the
+//                        impact model, a contact through the collision model) and is
+//                        logged; an obstacle contact or a failure ends the shot.
 class ShotRun {
  public:
-  ShotRun(const Scene& scene, const SimulationOptions& options, ShotResult* result)
-      : scene_(scene), options_(options), cloth_(scene), lines_(cushion_lines(scene)),
+  ShotRun(const CompiledScene& compiled, const SimulationOptions& options, ShotResult* result)
+      : scene_(compiled.scene()),
+        options_(options),
+        cloth_(scene_),
+        lines_(cushion_lines(scene_)),
+        ball_ball_(compiled.ball_ball_params()),
         result_(result) {
     // The cheapest impact method that meets the accuracy asked for: the table where its
     // measured error does, else an exact method at a tolerance that does. Over the
     // uniform domain `exact` (also the table's fallback) errs by at most about 5
     // tolerances, `extrapolation` by about 100 (bench/README.md): a tenth and a
-    // hundredth of the accuracy.
-    impact_.method = chosen_impact_method(scene, options);
+    // hundredth of the accuracy. The collisions' error stays below 100 tolerances.
+    impact_.method = chosen_impact_method(scene_, options);
     const double tolerances = impact_.method == ImpactMethod::extrapolation ? 100.0 : 10.0;
     impact_.tolerance = std::clamp(options.impact_accuracy / tolerances, 1e-14, 1e-3);
+    const double tolerance = std::clamp(options.impact_accuracy / 100.0, 1e-14, 1e-3);
     if (impact_.method == ImpactMethod::table) {
       impact_.table = options.table;
       impact_.table_fallback_tolerance = impact_.tolerance;  // the accuracy asked for, as above
     }
+    collision_.tolerance = tolerance;
     result_->impact_method = impact_.method;
   }
 
   // Cue strike: speed along the aim, topspin about the horizontal axis perpendicular
-  // to the motion (natural-roll sense), sidespin about z.
+  // to the motion (natural-roll sense), sidespin about z. The object balls lie at rest.
   void strike(Vec2 cue_ball, const Shot& shot) {
+    const size_t n = 1 + scene_.balls.size();
+    runs_.resize(n);
+    result_->balls.resize(n);
+    result_->balls[0].name = kCueBallName;
+    result_->balls[0].start = cue_ball;
+    for (size_t k = 1; k < n; ++k) {
+      runs_[k].b.p = scene_.balls[k - 1].position;
+      result_->balls[k].name = scene_.balls[k - 1].name;
+      result_->balls[k].start = scene_.balls[k - 1].position;
+    }
+    if (n > 1) pairs_.resize(n * (n - 1) / 2);
+
     const double phi = shot.aim_deg * kDegree;
-    b_.p = cue_ball;
-    b_.v = {shot.speed * std::cos(phi), shot.speed * std::sin(phi)};
+    Ball& b = runs_[0].b;
+    b.p = cue_ball;
+    b.v = {shot.speed * std::cos(phi), shot.speed * std::sin(phi)};
     const double wt = shot.topspin_k * shot.speed / cloth_.radius;
-    b_.w = {-wt * std::sin(phi), wt * std::cos(phi), shot.sidespin_k * shot.speed / cloth_.radius};
-    result_->events.reserve(16);
-    log(EventType::strike, -1, -1, 0.0);
-    check_cushions_ = cushions_in_reach();
+    b.w = {-wt * std::sin(phi), wt * std::cos(phi), shot.sidespin_k * shot.speed / cloth_.radius};
+    log(0, EventType::strike);
+    runs_[0].changed = true;
+    runs_[0].check_cushions = cushions_in_reach(b);
     result_->status = ShotStatus::rest;
   }
 
-  // Runs the stages until the ball rests or the shot ends otherwise.
+  // Runs the stages until every ball rests or the shot ends otherwise.
   void run() {
-    for (;;) {
-      if (static_cast<int>(result_->events.size()) > options_.max_events) {
-        result_->status = ShotStatus::event_limit;
-        result_->message =
-            fmt::format("more than {} events before the ball came to rest", options_.max_events);
+    while (!over_ && anything_left()) {
+      if (events_ > options_.max_events) {
+        end_shot(ShotStatus::event_limit,
+                 fmt::format("more than {} events before the {} came to rest", options_.max_events,
+                             runs_.size() == 1 ? "ball" : "balls"));
         break;
       }
-      const Piece piece = piece_from(cloth_, b_);
-      if (piece.motion == Motion::resting) {
-        b_.v = {0.0, 0.0};
-        log(EventType::rest, -1, -1, 0.0);
-        break;
-      }
-      const NextEvent next = next_event(piece);
-      advance(piece, next.after);
+      const Next next = find_next_event();
+      if (next.time == kNever) break;
+      advance(next);
       resolve(next);
-      if (next.type == EventType::rest || result_->status != ShotStatus::rest) break;
     }
-    result_->final_position = b_.p;
-    result_->duration = t_;
+    finish();
   }
 
  private:
-  // Stage 1.
-  NextEvent next_event(const Piece& piece) const {
+  // ---- Stage 1 -------------------------------------------------------------------
+
+  Next find_next_event() {
+    refresh_changed_balls();
+    for (;;) {
+      const Next next = earliest();
+      if (next.type != EventType::ball_contact) return next;
+      // The contact's balls must approach along their line of centres where they meet,
+      // as the collision model asks. A graze that rounding makes a parting is no
+      // contact, and the pair's next contact after the graze is looked for; but balls
+      // that touch and that their paths press together with no approach speed left are
+      // a push, which is not modelled (like a ball pressed into a cushion).
+      if (approaching(next)) return next;
+      PairContact& pair = pair_of(next.ball, next.other);
+      if (pair.touching || pair.parts == kNever) {
+        // Touching already, or crossing into 2R without parting again within their
+        // pieces: pressed together.
+        Next pressed = next;
+        pressed.pressed = true;
+        return pressed;
+      }
+      search_pair(next.ball, next.other, pair.parts);
+    }
+  }
+
+  // New pieces, own events and pair contacts for the balls the last event changed.
+  void refresh_changed_balls() {
+    bool any = false;
+    for (size_t k = 0; k < runs_.size(); ++k) {
+      BallRun& r = runs_[k];
+      if (!r.changed || !r.on_table) continue;
+      any = true;
+      r.piece = detail::piece_from(cloth_, r.b);
+      r.moving = r.piece.motion != Motion::resting;
+      if (!r.moving) {
+        r.b.v = {0.0, 0.0};
+        log(static_cast<int>(k), EventType::rest);
+      } else {
+        r.own = own_event(r);
+      }
+    }
+    if (any && !pairs_.empty()) {
+      for (size_t i = 0; i < runs_.size(); ++i)
+        for (size_t j = i + 1; j < runs_.size(); ++j)
+          if (runs_[i].changed || runs_[j].changed)
+            search_pair(static_cast<int>(i), static_cast<int>(j), -1.0);
+    }
+    for (BallRun& r : runs_) r.changed = false;
+  }
+
+  // A ball's own next event: the piece's end (slide to roll, rest), the sidespin stop,
+  // then the first contact before either (cushion, pocket, obstacle).
+  NextEvent own_event(const BallRun& r) const {
+    const Ball& b = r.b;
+    const Piece& piece = r.piece;
     NextEvent next;
     next.after = piece.duration;
     next.type = piece.motion == Motion::sliding ? EventType::slide_to_roll : EventType::rest;
-    const double spin_stop = b_.w.z != 0.0 ? std::abs(b_.w.z) / cloth_.spin_decel : kNever;
+    const double spin_stop = b.w.z != 0.0 ? std::abs(b.w.z) / cloth_.spin_decel : kNever;
     if (spin_stop < next.after) {
       next.after = spin_stop;
       next.type = EventType::spin_stop;
     }
-    const Quadratic q{b_.p, b_.v, 0.5 * piece.accel};
-    if (check_cushions_) {
+    const Quadratic q{b.p, b.v, 0.5 * piece.accel};
+    if (r.check_cushions) {
       for (int i = 0; i < 4; ++i) {
         const double hit = cushion_contact(q, i, next.after);
         if (hit < next.after) next = {EventType::cushion, hit, i};
@@ -419,14 +280,56 @@ class ShotRun {
     }
     for (size_t i = 0; i < scene_.pockets.size(); ++i) {
       const double hit =
-          entry_time(q, next.after, scene_.pockets[i].centre, scene_.pockets[i].radius);
+          detail::entry_time(q, next.after, scene_.pockets[i].centre, scene_.pockets[i].radius);
       if (hit < next.after) next = {EventType::pocket, hit, static_cast<int>(i)};
     }
     for (size_t i = 0; i < scene_.obstacles.size(); ++i) {
-      const double hit = entry_time(q, next.after, scene_.obstacles[i], 2.0 * cloth_.radius);
+      const double hit =
+          detail::entry_time(q, next.after, scene_.obstacles[i], 2.0 * cloth_.radius);
       if (hit < next.after) next = {EventType::obstacle, hit, static_cast<int>(i)};
     }
-    return next;
+    return settle_ties(r, q, next);
+  }
+
+  // The contract's order among a ball's events within kTie of each other: a contact of
+  // an earlier kind (or of the same kind with a lower index) that begins within kTie
+  // after the event found comes first, at the time of the event found. Each search above is bounded
+  // by the earliest event found before it, so such a contact is looked for here: where the ball is
+  // at the window's end says cheaply whether one can exist, and only then is it solved.
+  NextEvent settle_ties(const BallRun& r, const Quadratic& q, const NextEvent& found) const {
+    if (!(found.after < kNever)) return found;
+    const double end = found.after + kTie;
+    const Vec2 p = q.a0 + end * q.a1 + (end * end) * q.a2;
+    NextEvent best = found;
+    const auto before_best = [&](EventType type, int which) {
+      return rank(type) != rank(best.type) ? rank(type) < rank(best.type) : which < best.which;
+    };
+    // Events of one window are taken as simultaneous, at the first one's time: a ball is
+    // never carried past a contact it meets first (the cushion it then resolves puts it
+    // on its line).
+    const auto consider = [&](EventType type, double hit, int which) {
+      if (hit <= end && before_best(type, which)) best = {type, found.after, which};
+    };
+    if (r.check_cushions) {
+      for (int i = 0; i < 4; ++i)
+        if (before_best(EventType::cushion, i) && dot(lines_[i].normal, p) >= lines_[i].contact)
+          consider(EventType::cushion, cushion_contact(q, i, end), i);
+    }
+    for (size_t i = 0; i < scene_.pockets.size(); ++i) {
+      const Pocket& k = scene_.pockets[i];
+      const Vec2 d = p - k.centre;
+      if (before_best(EventType::pocket, static_cast<int>(i)) && dot(d, d) < k.radius * k.radius)
+        consider(EventType::pocket, detail::entry_time(q, end, k.centre, k.radius),
+                 static_cast<int>(i));
+    }
+    const double reach = 2.0 * cloth_.radius;
+    for (size_t i = 0; i < scene_.obstacles.size(); ++i) {
+      const Vec2 d = p - scene_.obstacles[i];
+      if (before_best(EventType::obstacle, static_cast<int>(i)) && dot(d, d) < reach * reach)
+        consider(EventType::obstacle, detail::entry_time(q, end, scene_.obstacles[i], reach),
+                 static_cast<int>(i));
+    }
+    return best;
   }
 
   // When within `horizon` the centre meets cushion i moving in; kNever if it does not.
@@ -448,56 +351,166 @@ class ShotRun {
     return kNever;
   }
 
-  // Stage 2.
-  void advance(const Piece& piece, double dt) {
-    if (options_.record_path && dt > 0.0)
-      result_->path.push_back({t_, t_ + dt, b_.p, b_.v, piece.accel, piece.motion});
-    cueplan::physics::advance(cloth_, piece, dt, &b_);
-    t_ += dt;
+  // The next contact of balls i < j within both pieces (and kTie beyond the earlier
+  // end), after `after` s from the instant the pair was last searched about (< 0: a
+  // fresh search from now). Pairs off the table or with neither ball moving never meet.
+  void search_pair(int i, int j, double after) {
+    PairContact& pair = pair_of(i, j);
+    const BallRun& a = runs_[static_cast<size_t>(i)];
+    const BallRun& b = runs_[static_cast<size_t>(j)];
+    if (!a.on_table || !b.on_table || !(a.moving || b.moving)) {
+      pair = PairContact{};
+      return;
+    }
+    if (after < 0.0) {
+      pair.from = t_;
+      pair.horizon = std::min(a.own_time(), b.own_time()) - t_ + kTie;
+    }
+    const detail::Meeting contact = detail::contact_time(a.path_at(pair.from), b.path_at(pair.from),
+                                                         pair.horizon, 2.0 * cloth_.radius, after);
+    pair.root = contact.time;
+    pair.touching = contact.touching;
+    pair.parts = contact.parts;
+    pair.time = contact.time < kNever ? pair.from + contact.time : kNever;
   }
 
-  // Stage 3.
-  void resolve(const NextEvent& next) {
+  // The earliest event of all; of those within kTie of it, the contract's order decides
+  // which contact comes first, resolved at the first one's time.
+  Next earliest() const {
+    double first = kNever;
+    for (const BallRun& r : runs_)
+      if (r.on_table) first = std::min(first, r.own_time());
+    for (const PairContact& p : pairs_) first = std::min(first, p.time);
+    Next best, soonest;
+    if (first == kNever) return best;
+    const double window = first + kTie;
+    const auto consider = [&](const Next& c) {
+      if (c.time <= window && (best.time == kNever || earlier_in_order(c, best))) best = c;
+      if (c.time < soonest.time) soonest = c;
+    };
+    for (size_t k = 0; k < runs_.size(); ++k) {
+      const BallRun& r = runs_[k];
+      if (r.on_table && r.moving)
+        consider({r.own.type, r.own_time(), static_cast<int>(k), r.own.which});
+    }
+    if (!pairs_.empty()) {
+      for (size_t i = 0; i < runs_.size(); ++i)
+        for (size_t j = i + 1; j < runs_.size(); ++j) {
+          const PairContact& p = pair_of(static_cast<int>(i), static_cast<int>(j));
+          if (p.time < kNever)
+            consider({EventType::ball_contact, p.time, static_cast<int>(i), static_cast<int>(j)});
+        }
+    }
+    // When the window holds no contact, only motion changes, which leave other balls
+    // alone whatever their order: each at its own time (one resolved early would set a
+    // ball rolling before its slip is spent).
+    if (rank(best.type) == rank(EventType::rest)) return soonest;
+    best.time = first;  // the window's contacts are simultaneous, at its first time
+    return best;
+  }
+
+  // Whether the balls of a contact approach along their line of centres at its time: the
+  // collision model's own test (ball_collision.hpp), on the same numbers.
+  bool approaching(const Next& next) const {
+    const Ball a = state_at(next.ball, next.time), b = state_at(next.other, next.time);
+    const Vec2 d = b.p - a.p;
+    const double distance = std::hypot(d.x, d.y);
+    if (!(distance > 0.0)) return false;
+    const Vec2 n{d.x / distance, d.y / distance};
+    return dot(a.v, n) > dot(b.v, n);
+  }
+
+  // Ball k's state at `t` along its piece, leaving it where it is.
+  Ball state_at(int k, double t) const {
+    const BallRun& r = runs_[static_cast<size_t>(k)];
+    Ball b = r.b;
+    detail::advance(cloth_, r.piece, t - r.t0, &b);
+    return b;
+  }
+
+  // ---- Stage 2 -------------------------------------------------------------------
+
+  void advance(const Next& next) {
+    t_ = next.time;
+    if (next.type == EventType::ball_contact) {
+      bring(next.ball, next.time - runs_[static_cast<size_t>(next.ball)].t0);
+      bring(next.other, next.time - runs_[static_cast<size_t>(next.other)].t0);
+    } else {
+      const BallRun& r = runs_[static_cast<size_t>(next.ball)];
+      bring(next.ball, next.time == r.own_time() ? r.own.after : next.time - r.t0);
+    }
+  }
+
+  // Ball k moved `dt` along its piece to the shot's clock (its path recorded).
+  void bring(int k, double dt) {
+    BallRun& r = runs_[static_cast<size_t>(k)];
+    if (options_.record_path && dt > 0.0 && r.moving)
+      path_of(k).push_back({r.t0, t_, r.b.p, r.b.v, r.piece.accel, r.piece.motion});
+    detail::advance(cloth_, r.piece, dt, &r.b);
+    r.t0 = t_;
+  }
+
+  // ---- Stage 3 -------------------------------------------------------------------
+
+  void resolve(const Next& next) {
+    const int k = next.ball;
+    BallRun& r = runs_[static_cast<size_t>(k)];
     switch (next.type) {
       case EventType::slide_to_roll:
-        b_.w.x = -b_.v.y / cloth_.radius;
-        b_.w.y = b_.v.x / cloth_.radius;
-        log(next.type, -1, -1, 0.0);
+        r.b.w.x = -r.b.v.y / cloth_.radius;
+        r.b.w.y = r.b.v.x / cloth_.radius;
+        log(k, next.type);
+        r.changed = true;
         break;
       case EventType::spin_stop:
-        b_.w.z = 0.0;
-        log(next.type, -1, -1, 0.0);
+        r.b.w.z = 0.0;
+        log(k, next.type);
+        r.changed = true;
         break;
       case EventType::rest:
-        b_.v = {0.0, 0.0};
-        b_.w.x = b_.w.y = 0.0;
-        log(next.type, -1, -1, 0.0);
+        r.b.v = {0.0, 0.0};
+        r.b.w.x = r.b.w.y = 0.0;
+        log(k, next.type);
+        r.moving = false;
+        r.piece = Piece{};
+        search_pairs_of(k);
         break;
-      case EventType::cushion:
-        rebound(next.which);
-        break;
+      case EventType::cushion: rebound(k, next.other); break;
       case EventType::pocket:
-        result_->status = ShotStatus::pocketed;
-        log(next.type, -1, next.which, 0.0);
+        r.on_table = false;
+        r.moving = false;
+        result_->balls[static_cast<size_t>(k)].pocketed = true;
+        result_->balls[static_cast<size_t>(k)].pocket = next.other;
+        if (k == 0) result_->status = ShotStatus::pocketed;
+        log(k, next.type, -1, next.other);
+        search_pairs_of(k);
         break;
       case EventType::obstacle:
         result_->status = ShotStatus::hit_obstacle;
-        log(next.type, -1, next.which, 0.0);
+        log(k, next.type, -1, next.other);
+        over_ = true;
         break;
-      case EventType::strike:
+      case EventType::ball_contact:
+        if (next.pressed)
+          settle_pressed(next.ball, next.other);
+        else
+          collide(next.ball, next.other);
         break;
+      case EventType::strike: break;
     }
   }
 
   // A cushion contact: into the cushion's frame (X = n x z, Y = n, Z = z), resolved by
   // the impact model, and back.
-  void rebound(int which) {
+  void rebound(int k, int which) {
+    BallRun& r = runs_[static_cast<size_t>(k)];
+    Ball& b = r.b;
     const Vec2 n = lines_[which].normal;
     const Vec2 x_axis{n.y, -n.x};
     BallState in;
-    in.velocity = {dot(b_.v, x_axis), dot(b_.v, n), 0.0};
-    in.spin = {b_.w.x * x_axis.x + b_.w.y * x_axis.y, b_.w.x * n.x + b_.w.y * n.y, b_.w.z};
-    const bool pressed_in = dot(piece_from(cloth_, b_).accel, n) > 0.0;
+    in.velocity = {dot(b.v, x_axis), dot(b.v, n), 0.0};
+    in.spin = {b.w.x * x_axis.x + b.w.y * x_axis.y, b.w.x * n.x + b.w.y * n.y, b.w.z};
+    const bool pressed_in = dot(detail::piece_from(cloth_, b).accel, n) > 0.0;
     if (!(in.velocity.y > 0.0) ||
         (pressed_in &&
          in.velocity.y <= kRoundingApproach * std::hypot(in.velocity.x, in.velocity.y))) {
@@ -505,62 +518,236 @@ class ShotRun {
       // left (a run of ever smaller bounces, each e times the last: the exact method
       // follows them down to far below the rounding of the speed, so the run is cut at
       // kRoundingApproach): sliding along a cushion is not modelled.
-      result_->status = ShotStatus::impact_failed;
-      result_->message = fmt::format(
-          "cushion {}: the ball is pressed against it with no approach speed (sliding along a "
-          "cushion is not modelled)",
-          which);
+      end_shot(ShotStatus::impact_failed,
+               fmt::format("{}cushion {}: the ball is pressed against it with no approach speed "
+                           "(sliding along a cushion is not modelled)",
+                           whose(k), which));
       return;
     }
-    const ImpactResult r = resolve_impact(scene_.ball_and_cushion, in, impact_);
-    if (!usable(r.status)) {
-      result_->status = ShotStatus::impact_failed;
-      result_->message = fmt::format("cushion {}: {}", which, r.message);
+    const ImpactResult out = resolve_impact(scene_.ball_and_cushion, in, impact_);
+    if (!usable(out.status)) {
+      end_shot(ShotStatus::impact_failed,
+               fmt::format("{}cushion {}: {}", whose(k), which, out.message));
       return;
     }
-    b_.v = r.outgoing.velocity.x * x_axis + r.outgoing.velocity.y * n;
-    const Vec2 wh = r.outgoing.spin.x * x_axis + r.outgoing.spin.y * n;
-    b_.w = {wh.x, wh.y, r.outgoing.spin.z};
+    b.v = out.outgoing.velocity.x * x_axis + out.outgoing.velocity.y * n;
+    const Vec2 wh = out.outgoing.spin.x * x_axis + out.outgoing.spin.y * n;
+    b.w = {wh.x, wh.y, out.outgoing.spin.z};
     // On the contact line exactly, so rounding never leaves it past the cushion.
-    b_.p = b_.p + (lines_[which].contact - dot(n, b_.p)) * n;
-    ++result_->cushion_hits;
-    result_->max_cushion_normal_speed = std::max(result_->max_cushion_normal_speed, in.velocity.y);
-    if (r.status == ImpactStatus::rigid_limit_exceeded) result_->rigid_limit_exceeded = true;
-    if (r.method_used == ImpactMethod::table) ++result_->table_impacts;
-    log(EventType::cushion, which, -1, in.velocity.y);
-    check_cushions_ = cushions_in_reach();
+    b.p = b.p + (lines_[which].contact - dot(n, b.p)) * n;
+    BallOutcome& o = result_->balls[static_cast<size_t>(k)];
+    ++o.cushion_hits;
+    o.max_cushion_normal_speed = std::max(o.max_cushion_normal_speed, in.velocity.y);
+    if (k == 0 && out.status == ImpactStatus::rigid_limit_exceeded)
+      result_->rigid_limit_exceeded = true;
+    if (out.method_used == ImpactMethod::table) ++result_->table_impacts;
+    log(k, EventType::cushion, which, -1, in.velocity.y);
+    r.changed = true;
+    r.check_cushions = cushions_in_reach(b);
   }
 
-  void log(EventType type, int cushion, int index, double normal_speed) {
+  // A contact of balls i < j, resolved along their line of centres by the collision
+  // model (ball i is the lower index, as the contract fixes).
+  void collide(int i, int j) {
+    Ball& a = runs_[static_cast<size_t>(i)].b;
+    Ball& b = runs_[static_cast<size_t>(j)].b;
+    const CollisionResult out =
+        resolve_table_collision(ball_ball_, {a.p.x, a.p.y, 0.0}, {{a.v.x, a.v.y, 0.0}, a.w},
+                                {b.p.x, b.p.y, 0.0}, {{b.v.x, b.v.y, 0.0}, b.w}, collision_);
+    if (!usable(out.status)) {
+      end_shot(ShotStatus::collision_failed,
+               fmt::format("balls {} and {}: {}", result_->balls[static_cast<size_t>(i)].name,
+                           result_->balls[static_cast<size_t>(j)].name, out.message));
+      return;
+    }
+    const Vec2 d = b.p - a.p;
+    const double approach = dot(a.v - b.v, (1.0 / std::hypot(d.x, d.y)) * d);
+    const double speed = std::max(detail::norm(a.v), detail::norm(b.v));
+    a.v = {out.ball_i.velocity.x, out.ball_i.velocity.y};
+    a.w = out.ball_i.spin;
+    b.v = {out.ball_j.velocity.x, out.ball_j.velocity.y};
+    b.w = out.ball_j.spin;
+    drop_rounding(1e-12 * speed, &a);
+    drop_rounding(1e-12 * speed, &b);
+    // Exactly 2R apart (a hair more), so that rounding never leaves them overlapping and
+    // their next contact is a crossing of 2R that the search finds (as a ball that met a
+    // cushion is put on its contact line).
+    const double distance = std::hypot(d.x, d.y), diameter = 2.0 * cloth_.radius;
+    const double apart = diameter * (1.0 + 4e-16);
+    if (distance < apart && distance > diameter * (1.0 - 1e-9)) {
+      const Vec2 shift = (0.5 * (apart - distance) / distance) * d;
+      a.p = a.p - shift;
+      b.p = b.p + shift;
+    }
+    // Two balls that leave a contact barely moving would go on touching in ever smaller
+    // contacts as friction brings them together again (a ball rolling up to another):
+    // they come to rest here, which moves them by less than kSettleDistance.
+    if (crawling(a) && crawling(b)) {
+      stop(&a);
+      stop(&b);
+    }
+    log(i, EventType::ball_contact, -1, -1, approach, j, out.impulse_total);
+    log(j, EventType::ball_contact, -1, -1, approach, i, out.impulse_total);
+    for (const int k : {i, j}) {
+      BallRun& r = runs_[static_cast<size_t>(k)];
+      r.changed = true;
+      r.check_cushions = cushions_in_reach(r.b);
+    }
+    if (i == 0 && result_->first_contact < 0) result_->first_contact = j;
+  }
+
+  // Balls i and j touch with no approach speed left while friction presses them together:
+  // a push, which the collision model does not describe. Balls that barely move - each
+  // would roll on less than kSettleDistance - are put at rest where they are (a ball
+  // rolling up to another ends the shot this way); a faster push ends the shot (as a
+  // ball pressed into a cushion does).
+  void settle_pressed(int i, int j) {
+    BallRun& a = runs_[static_cast<size_t>(i)];
+    BallRun& b = runs_[static_cast<size_t>(j)];
+    if (!crawling(a.b) || !crawling(b.b)) {
+      end_shot(ShotStatus::collision_failed,
+               fmt::format("balls {} and {}: pressed together with no approach speed left "
+                           "(a sustained push is not modelled)",
+                           result_->balls[static_cast<size_t>(i)].name,
+                           result_->balls[static_cast<size_t>(j)].name));
+      return;
+    }
+    for (BallRun* r : {&a, &b}) {
+      stop(&r->b);
+      r->changed = true;  // at rest: its rest is logged with its new piece
+    }
+  }
+
+  // Whether a ball barely moves: it would roll on less than kSettleDistance.
+  bool crawling(const Ball& b) const {
+    const double crawl = std::sqrt(2.0 * cloth_.roll_decel * kSettleDistance);  // m/s
+    return detail::norm(b.v) <= crawl && cloth_.radius * std::hypot(b.w.x, b.w.y) <= crawl;
+  }
+
+  static void stop(Ball* b) {
+    b->v = {0.0, 0.0};
+    b->w.x = b->w.y = 0.0;
+  }
+
+  // What rounding leaves of a ball's motion after a collision, far below the model's own
+  // error: a ball within `noise` (m/s) of rest is at rest, and sidespin that small is
+  // none. Kept, it would play out as ever smaller contacts and spin stops at one instant
+  // (a stun shot leaves the cue ball with 1e-17 m/s against the ball it stopped behind).
+  void drop_rounding(double noise, Ball* b) const {
+    const double r = cloth_.radius;
+    if (std::abs(b->v.x) <= noise && std::abs(b->v.y) <= noise && r * std::abs(b->w.x) <= noise &&
+        r * std::abs(b->w.y) <= noise) {
+      b->v = {0.0, 0.0};
+      b->w.x = b->w.y = 0.0;
+    }
+    if (r * std::abs(b->w.z) <= noise) b->w.z = 0.0;
+  }
+
+  // ---- Bookkeeping ---------------------------------------------------------------
+
+  bool anything_left() const {
+    for (const BallRun& r : runs_)
+      if (r.on_table && (r.moving || r.changed)) return true;
+    return false;
+  }
+
+  void end_shot(ShotStatus status, std::string message) {
+    result_->status = status;
+    result_->message = std::move(message);
+    over_ = true;
+  }
+
+  // Ball k's contacts with every other ball searched again: it stopped (it meets another
+  // only if that one moves) or left the table (it meets none).
+  void search_pairs_of(int k) {
+    for (size_t m = 0; m < runs_.size(); ++m)
+      if (static_cast<int>(m) != k)
+        search_pair(std::min(k, static_cast<int>(m)), std::max(k, static_cast<int>(m)), -1.0);
+  }
+
+  // "" for the cue ball (as messages have always read), else "ball NAME: ".
+  std::string whose(int k) const {
+    return k == 0 ? std::string()
+                  : fmt::format("ball {}: ", result_->balls[static_cast<size_t>(k)].name);
+  }
+
+  void log(int k, EventType type, int cushion = -1, int index = -1, double normal_speed = 0.0,
+           int other = -1, double impulse = 0.0) {
+    const Ball& b = runs_[static_cast<size_t>(k)].b;
     ShotEvent e;
     e.type = type;
     e.time = t_;
-    e.position = b_.p;
-    e.velocity = b_.v;
-    e.spin = b_.w;
+    e.position = b.p;
+    e.velocity = b.v;
+    e.spin = b.w;
     e.cushion = cushion;
     e.index = index;
     e.normal_speed = normal_speed;
-    result_->events.push_back(e);
+    e.ball = k;
+    e.other = other;
+    e.impulse = impulse;
+    std::vector<ShotEvent>& events = events_of(k);
+    if (events.empty()) events.reserve(16);
+    events.push_back(e);
+    ++events_;
   }
 
-  // Whether any cushion is still within reach; refreshed after every cushion.
-  bool cushions_in_reach() const {
-    const double d = reach(cloth_, b_);
+  std::vector<ShotEvent>& events_of(int k) {
+    return k == 0 ? result_->events : result_->balls[static_cast<size_t>(k)].events;
+  }
+  std::vector<PathSegment>& path_of(int k) {
+    return k == 0 ? result_->path : result_->balls[static_cast<size_t>(k)].path;
+  }
+  PairContact& pair_of(int i, int j) { return pairs_[pair_index(i, j)]; }
+  const PairContact& pair_of(int i, int j) const { return pairs_[pair_index(i, j)]; }
+  // Pairs i < j in the order (0, 1), (0, 2), ..., (1, 2), ...
+  size_t pair_index(int i, int j) const {
+    const size_t n = runs_.size(), a = static_cast<size_t>(i), b = static_cast<size_t>(j);
+    return a * (2 * n - a - 1) / 2 + (b - a - 1);
+  }
+
+  // Whether any cushion is within reach of a ball in this state; found again after
+  // every cushion and collision.
+  bool cushions_in_reach(const Ball& b) const {
+    const double d = detail::reach(cloth_, b);
     for (const CushionLine& c : lines_)
-      if (c.contact - dot(c.normal, b_.p) <= d) return true;
+      if (c.contact - dot(c.normal, b.p) <= d) return true;
     return false;
+  }
+
+  // Every ball where the shot ended; the outcomes, the cue ball's at the top.
+  void finish() {
+    double cue_end = t_;
+    const std::vector<ShotEvent>& cue_events = result_->events;
+    if (!cue_events.empty() && !runs_[0].moving)
+      cue_end = cue_events.back().time;  // at rest or pocketed before the others
+    for (size_t k = 0; k < runs_.size(); ++k) {
+      BallRun& r = runs_[k];
+      if (r.on_table && r.moving && t_ > r.t0) bring(static_cast<int>(k), t_ - r.t0);
+      result_->balls[k].final_position = r.b.p;
+    }
+    const BallOutcome& cue = result_->balls[0];
+    result_->final_position = cue.final_position;
+    result_->duration = cue_end;
+    result_->cushion_hits = cue.cushion_hits;
+    result_->max_cushion_normal_speed = cue.max_cushion_normal_speed;
+    result_->balls[0].events = result_->events;
+    result_->balls[0].path = result_->path;
   }
 
   const Scene& scene_;
   const SimulationOptions& options_;
   const ClothModel cloth_;
   const std::array<CushionLine, 4> lines_;
+  const BallBallParams& ball_ball_;
   ImpactOptions impact_;
+  CollisionOptions collision_;
   ShotResult* result_;
-  Ball b_;
-  double t_ = 0.0;
-  bool check_cushions_ = false;
+  std::vector<BallRun> runs_;
+  std::vector<PairContact> pairs_;
+  double t_ = 0.0;  // s, the shot's clock: the time of the last event
+  int events_ = 0;  // events logged, of every ball
+  bool over_ = false;
 };
 
 ShotResult invalid_shot(ValidationError error) {
@@ -576,10 +763,10 @@ ShotResult invalid_shot(ValidationError error) {
 ShotResult simulate(const CompiledScene& compiled, Vec2 cue_ball, const Shot& shot,
                     const SimulationOptions& options) {
   if (compiled.error()) return invalid_shot(*compiled.error());
-  const Scene& scene = compiled.scene();
-  if (Validation e = check_stroke(scene, cue_ball, shot, options)) return invalid_shot(std::move(*e));
+  if (Validation e = check_stroke(compiled.scene(), cue_ball, shot, options))
+    return invalid_shot(std::move(*e));
   ShotResult result;
-  ShotRun run(scene, options, &result);
+  ShotRun run(compiled, options, &result);
   run.strike(cue_ball, shot);
   run.run();
   return result;

@@ -55,12 +55,17 @@ std::vector<size_t> coach_order(const std::vector<RankItem>& items) {
       const RankItem& c = items[i];
       const RankItem& l = items[leader];
       top_low = std::max(top_low, c.both.low);
+      if (c.both.samples != l.both.samples) {
+        if (c.both.samples > l.both.samples) leader = i;
+        continue;
+      }
       if (c.both.p > l.both.p || (c.both.p == l.both.p && c.effort < l.effort)) leader = i;
     }
     size_t pick = leader;
     for (size_t i : left) {
       if (i == leader) continue;
       const RankItem& c = items[i];
+      if (c.both.samples < items[leader].both.samples) continue;  // lost the race
       if (c.both.high < top_low) continue;
       if (c.both.successes == 0 && items[leader].both.successes > 0) continue;
       if (significantly_different(*c.outcomes, *items[leader].outcomes)) continue;

@@ -32,10 +32,12 @@ struct RankItem {
   double effort = 0.0;
 };
 
-// The coach's order, as indices into `items`, best first. Repeatedly: the leader is
-// the stroke with the highest success rate (ties: less effort, then the lower index);
-// the contenders are the leader and every stroke McNemar's test cannot tell from it
-// whose interval reaches the highest lower bound of those left and which succeeded at
+// The coach's order, as indices into `items`, best first. Repeatedly: the leader is,
+// of the strokes sampled the most, the one with the highest success rate (ties: less
+// effort, then the lower index) - a stroke with fewer samples was dropped from the race
+// of estimates as measurably worse than another; the contenders are the leader and
+// every stroke sampled as often that McNemar's test cannot tell from it whose interval
+// reaches the highest lower bound of those left and which succeeded at
 // least once if the leader did (a stroke no sample landed is no way to play the shot
 // while another lands sometimes); the simplest contender
 // (least effort; ties: higher rate, then lower index) comes next. So the first

@@ -804,6 +804,15 @@ RouteResult plan_route(const problems::Problem& problem, const RouteOptions& opt
     result.error = std::move(e);
     return finish(result, ctx, start);
   }
+  if (!problem.scene.balls.empty()) {
+    // Each stroke would move them, and the route's state is the cue ball alone.
+    result.error =
+        physics::invalid({"scene", "balls"},
+                         "are not planned for by routes yet: a route's state is the cue ball "
+                         "alone, and each stroke could move the object balls");
+    result.message = "problem: " + problems::file_message(*result.error);
+    return finish(result, ctx, start);
+  }
   const detail::Task task(problem);
   ctx.task = &task;
   if (std::string why = unreachable_reason(problem); !why.empty()) {

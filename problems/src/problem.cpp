@@ -1,12 +1,14 @@
 // What a problem asks for: a human summary, and the tests a shot and its outcome pass.
+#include "cueplan/problems/problem.hpp"
+
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <string_view>
-
-#include "cueplan/problems/problem.hpp"
+#include <vector>
 
 namespace cueplan::problems {
 namespace {
@@ -36,6 +38,12 @@ std::string scene_field(const FieldPath& path) {
     return "physics." + *member;
   }
   if (*head == "cloth") return "physics." + path.drop_front(1).text();
+  if (*head == "ball_contact") {
+    const std::string* member = name_at(path, 1);
+    if (member == nullptr) return "physics";
+    if (*member == "mu_ball") return "physics.mu_ball";
+    return "physics.ball_" + *member;  // ball_restitution, ball_model, ball_friction
+  }
   if (*head == "pockets") {
     const int* index = index_at(path, 1);
     if (path.size() >= 3) return "table.pocket_radius";  // the one radius every pocket has
@@ -43,7 +51,7 @@ std::string scene_field(const FieldPath& path) {
       return fmt::format("the {} pocket", kPocketNames[*index]);
     return path.text();
   }
-  return path.text();  // obstacles[2], ...
+  return path.text();  // obstacles[2], balls.red, ...
 }
 
 }  // namespace
@@ -62,7 +70,8 @@ std::string file_field(const FieldPath& path) {
     if (*member == "cushions_min") return "limits.cushions[0]";
     if (*member == "cushions_max") return "limits.cushions[1]";
   }
-  return path.text();  // cue_ball, target, tolerance, max_strokes, time_budget_s
+  return path.text();  // cue_ball, target, tolerance, max_strokes, time_budget_s, pot.ball,
+                       // first_contact
 }
 
 std::string file_message(const physics::ValidationError& error) {
@@ -71,12 +80,13 @@ std::string file_message(const physics::ValidationError& error) {
 
 Validation validate(const Problem& p) {
   if (Validation e = p.scene.validate()) return e->under({"scene"});
-  // A pocket or obstacle a ball position meets is a field of the scene.
-  for (const auto& [position, name] : {std::pair{p.cue_ball, "cue_ball"}, std::pair{p.target, "target"}}) {
-    if (Validation e = p.scene.check_position(position, {name})) {
-      if (e->other) e->other = e->other->under({"scene"});
-      return e;
-    }
+  // A pocket or ball a position meets is a field of the scene. The cue ball lies among
+  // the object balls; the target need not be clear of them, which the shot may move.
+  Validation place = p.scene.check_position(p.cue_ball, {"cue_ball"});
+  if (!place) place = p.scene.check_rest_position(p.target, {"target"});
+  if (place) {
+    if (place->other) place->other = place->other->under({"scene"});
+    return place;
   }
   if (!std::isfinite(p.tolerance) || !(p.tolerance > 0.0))
     return invalid({"tolerance"}, "must be positive and finite (m)", p.tolerance);
@@ -106,6 +116,24 @@ Validation validate(const Problem& p) {
                    *p.max_strokes);
   if (p.time_budget_s && !(std::isfinite(*p.time_budget_s) && *p.time_budget_s > 0.0))
     return invalid({"time_budget_s"}, "must be positive and finite (s)", *p.time_budget_s);
+  const auto is_ball = [&](const std::string& name) {
+    for (const physics::ObjectBall& b : p.scene.balls)
+      if (b.name == name) return true;
+    return false;
+  };
+  if (p.pot) {
+    if (!is_ball(p.pot->ball))
+      return invalid({"pot", "ball"},
+                     fmt::format("names no object ball on the table: \"{}\"", p.pot->ball));
+    if (p.pot->pocket < 0 || p.pot->pocket >= static_cast<int>(p.scene.pockets.size()))
+      return invalid({"pot", "pocket"},
+                     p.scene.pockets.empty() ? "names a pocket, but the table has none"
+                                             : "names no pocket of this table",
+                     p.pot->pocket);
+  }
+  if (p.first_contact && !is_ball(*p.first_contact))
+    return invalid({"first_contact"},
+                   fmt::format("names no object ball on the table: \"{}\"", *p.first_contact));
   return {};
 }
 
@@ -147,6 +175,17 @@ std::string describe(const Problem& p) {
                  p.cue_ball.y, p.target.x, p.target.y, 1e3 * p.tolerance);
   if (!s.obstacles.empty())
     text += fmt::format("; {} obstacle{}", s.obstacles.size(), s.obstacles.size() == 1 ? "" : "s");
+  if (!s.balls.empty()) {
+    std::string names;
+    for (const physics::ObjectBall& ball : s.balls)
+      names += (names.empty() ? "" : ", ") + ball.name;
+    text +=
+        fmt::format("\n  object ball{} {} (ball-ball {}, mu_b {:.4g}, e_b {:.4g})",
+                    s.balls.size() == 1 ? "" : "s", names, physics::to_string(s.ball_contact.model),
+                    s.ball_contact.mu_ball, s.ball_contact.restitution);
+  }
+  if (p.pot) text += fmt::format("\n  pot {} into {}", p.pot->ball, pocket_name(s, p.pot->pocket));
+  if (p.first_contact) text += fmt::format("; first contact {}", *p.first_contact);
   const Limits& l = p.limits;
   text += fmt::format("\n  limits: speed {:.4g}-{:.4g} m/s, spin <= {:.4g}, {}, ", l.speed_min, l.speed_max,
                  l.spin_max, describe_aim(l.aim).c_str());
@@ -179,6 +218,28 @@ double miss_distance(const Problem& problem, const physics::ShotResult& result) 
     return std::numeric_limits<double>::infinity();
   return std::hypot(result.final_position.x - problem.target.x,
                     result.final_position.y - problem.target.y);
+}
+
+bool makes_pot(const Problem& problem, const physics::ShotResult& result) {
+  if (!problem.pot) return false;
+  for (const physics::BallOutcome& b : result.balls)
+    if (b.name == problem.pot->ball) return b.pocketed && b.pocket == problem.pot->pocket;
+  return false;
+}
+
+std::string pocket_name(const physics::Scene& scene, int pocket) {
+  const std::vector<physics::Pocket> standard =
+      scene.pockets.empty()
+          ? std::vector<physics::Pocket>{}
+          : physics::standard_pockets(scene.length, scene.width, scene.pockets.front().radius);
+  const bool named = scene.pockets.size() == standard.size() &&
+                     std::equal(standard.begin(), standard.end(), scene.pockets.begin(),
+                                [](const physics::Pocket& a, const physics::Pocket& b) {
+                                  return a.centre.x == b.centre.x && a.centre.y == b.centre.y &&
+                                         a.radius == b.radius;
+                                });
+  if (named && pocket >= 0 && pocket < 6) return kPocketNames[pocket];
+  return fmt::format("pocket {}", pocket);
 }
 
 bool reaches_target(const Problem& problem, const physics::ShotResult& result) {

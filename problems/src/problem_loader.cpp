@@ -1,9 +1,10 @@
 // Problem files into a Problem: each section read in the order the format lists them,
 // then the physics' own checks on the finished scene and positions (problems/README.md).
-#include <yaml-cpp/eventhandler.h>
 #include <fmt/format.h>
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cerrno>
@@ -14,6 +15,7 @@
 #include <string_view>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "cueplan/problems/problem.hpp"
 #include "yaml_fields.hpp"
@@ -108,8 +110,8 @@ void read_physics(const Mapping& root, FieldLines& lines, physics::Scene& scene)
   const std::optional<Field> field = root.find("physics");
   if (!field) return;
   const Mapping m(*field,
-                  {"mu_slide", "mu_roll", "mu_spin", "mu_cushion", "restitution",
-                   "cushion_height", "gravity"},
+                  {"mu_slide", "mu_roll", "mu_spin", "mu_cushion", "restitution", "cushion_height",
+                   "gravity", "mu_ball", "ball_restitution", "ball_model", "ball_friction"},
                   lines);
   physics::CushionParams& cushion = scene.ball_and_cushion;
   physics::ClothParams& cloth = scene.cloth;
@@ -120,6 +122,73 @@ void read_physics(const Mapping& root, FieldLines& lines, physics::Scene& scene)
   if (auto f = m.find("restitution")) cushion.restitution = detail::positive_number(*f);
   if (auto f = m.find("cushion_height")) cushion.cushion_height = detail::positive_number(*f);
   if (auto f = m.find("gravity")) cloth.gravity = detail::positive_number(*f);
+  // Between the balls (the collision library checks the rest of their rules).
+  physics::BallContact& contact = scene.ball_contact;
+  if (auto f = m.find("mu_ball")) contact.mu_ball = detail::non_negative_number(*f);
+  if (auto f = m.find("ball_restitution")) contact.restitution = detail::positive_number(*f);
+  if (auto f = m.find("ball_model")) {
+    const std::string model = detail::one_of(*f, {"mathavan_2014", "frictional_inelastic"});
+    physics::parse_ball_model(model, &contact.model);
+  }
+  if (auto f = m.find("ball_friction")) {
+    const std::string friction = detail::one_of(*f, {"constant", "speed_dependent"});
+    physics::parse_ball_friction(friction, &contact.friction);
+  }
+}
+
+// balls: a mapping from each object ball's name to its centre [x, y] (m), at rest.
+void read_balls(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+  const std::optional<Field> field = root.find("balls");
+  if (!field) return;
+  if (!field->value.IsMap())
+    detail::fail(*field,
+                 "must be a mapping from each object ball's name to its centre [x, y] in "
+                 "m, got " +
+                     detail::describe_value(field->value));
+  const Mapping balls(*field, {}, lines);
+  for (const auto& [name, position] : balls.entries()) {
+    if (name == physics::kCueBallName)
+      detail::fail(position, "names the cue ball (\"cue\"); an object ball needs another name");
+    scene.balls.push_back({name, detail::point(position)});
+  }
+}
+
+// The names of the object balls, for checking the fields that refer to them.
+std::vector<std::string_view> ball_names(const physics::Scene& scene) {
+  std::vector<std::string_view> names;
+  for (const physics::ObjectBall& b : scene.balls) names.push_back(b.name);
+  return names;
+}
+
+// A field that names one of the object balls.
+std::string read_ball_name(const Field& field, const physics::Scene& scene) {
+  if (scene.balls.empty())
+    detail::fail(field, "names an object ball, but the file has no balls: " +
+                            detail::describe_value(field.value));
+  return detail::one_of(field, ball_names(scene), "the name of a ball in balls:");
+}
+
+// pot: {ball: NAME, pocket: POCKET} and first_contact: NAME, for pot-and-position planning.
+void read_pot(const Mapping& root, FieldLines& lines, Problem& problem) {
+  const physics::Scene& scene = problem.scene;
+  if (const std::optional<Field> field = root.find("pot")) {
+    const Mapping m(*field, {"ball", "pocket"}, lines);
+    Pot pot;
+    pot.ball = read_ball_name(m.require("ball", "the object ball to pot, a name in balls"), scene);
+    const Field pocket = m.require("pocket", "the pocket to pot it in (bottom_left, ...)");
+    const std::string name = detail::one_of(
+        pocket, std::vector<std::string_view>(std::begin(kPocketNames), std::end(kPocketNames)));
+    if (scene.pockets.empty())
+      detail::fail(pocket, "names the " + name +
+                               " pocket, but the table has none "
+                               "(table.pockets: none)");
+    pot.pocket = static_cast<int>(
+        std::find(std::begin(kPocketNames), std::end(kPocketNames), std::string_view(name)) -
+        std::begin(kPocketNames));
+    problem.pot = pot;
+  }
+  if (const std::optional<Field> field = root.find("first_contact"))
+    problem.first_contact = read_ball_name(*field, scene);
 }
 
 void read_obstacles(const Mapping& root, physics::Scene& scene, FieldLines& lines) {
@@ -194,10 +263,11 @@ Limits read_limits(const Mapping& root, FieldLines& lines) {
 // The stages of reading one problem, in order.
 Problem read_problem(const Field& document, const std::string& source) {
   FieldLines lines;
-  const Mapping root(document,
-                     {"name", "table", "ball", "physics", "cue_ball", "target", "tolerance",
-                      "obstacles", "limits", "max_strokes", "time_budget_s"},
-                     lines);
+  const Mapping root(
+      document,
+      {"name", "table", "ball", "physics", "cue_ball", "target", "tolerance", "obstacles", "balls",
+       "limits", "max_strokes", "time_budget_s", "pot", "first_contact"},
+      lines);
   Problem problem;
   problem.source = source;
   problem.name = read_name(root, source);
@@ -207,6 +277,7 @@ Problem read_problem(const Field& document, const std::string& source) {
   read_ball(root, lines, scene);
   read_physics(root, lines, scene);
   read_obstacles(root, scene, lines);
+  read_balls(root, lines, scene);
   problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m");
   problem.target = read_position(root, "target", "where the cue ball should stop, [x, y] in m");
   if (const std::optional<Field> f = root.find("tolerance"))
@@ -216,6 +287,7 @@ Problem read_problem(const Field& document, const std::string& source) {
     problem.max_strokes = detail::whole_number(*f, 1, kMostStrokes);
   if (const std::optional<Field> f = root.find("time_budget_s"))
     problem.time_budget_s = detail::positive_number(*f);
+  read_pot(root, lines, problem);
   // The physics' and the problem's own rules, on the finished problem.
   if (const physics::Validation error = validate(problem)) fail_on(*error, lines, root.line());
   return problem;

@@ -68,6 +68,27 @@ std::string format_number(double value) { return fmt::format("{:.10g}", value); 
 
 }  // namespace
 
+std::string did_you_mean(std::string_view name, const std::vector<std::string_view>& candidates) {
+  std::string_view closest;
+  std::size_t best = 3;  // suggest only close spellings
+  for (std::string_view candidate : candidates) {
+    const std::size_t d = edit_distance(name, candidate);
+    if (d < best) best = d, closest = candidate;
+  }
+  return closest.empty() ? std::string() : " (did you mean " + std::string(closest) + "?)";
+}
+
+std::string one_of(const Field& field, const std::vector<std::string_view>& names,
+                   std::string_view what) {
+  const std::string given = text(field);
+  for (std::string_view n : names)
+    if (given == n) return given;
+  std::string list;
+  for (std::string_view n : names) list += (list.empty() ? "" : ", ") + std::string(n);
+  fail(field, "must be " + std::string(what) + " " + list + ", got " + describe_value(field.value) +
+                  did_you_mean(given, names));
+}
+
 int line_of(const YAML::Node& node) {
   const YAML::Mark mark = node.Mark();
   return mark.is_null() ? 0 : mark.line + 1;
@@ -134,23 +155,19 @@ Mapping::Mapping(const Field& mapping, std::initializer_list<std::string_view> a
     // Only a plain word can be a field's name; anything else is named by its mapping.
     if (!plain_word(name))
       fail({key, path_.empty() ? "(document)" : path_, key_line},
-           "has the key " + shown_text(name) + "; keys are plain words such as " +
-               std::string(*allowed.begin()));
+           "has the key " + shown_text(name) + "; keys are plain words" +
+               (allowed.size() > 0 ? " such as " + std::string(*allowed.begin()) : ""));
     // A block value starts on a later line (and an empty one wherever the next token
     // is): the key's line is where the field is.
     Field field{value, child_path(name), key_line};
-    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+    if (allowed.size() > 0 && std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
       std::string message = "unknown key; expected one of ";
-      std::string_view closest;
-      std::size_t best = 3;  // suggest only close spellings
       for (std::string_view candidate : allowed) {
         if (candidate != *allowed.begin()) message += ", ";
         message += candidate;
-        const std::size_t d = edit_distance(name, candidate);
-        if (d < best) best = d, closest = candidate;
       }
-      if (!closest.empty()) message += " (did you mean " + std::string(closest) + "?)";
-      fail({value, field.path, key_line}, message);
+      fail({value, field.path, key_line},
+           message + did_you_mean(name, std::vector<std::string_view>(allowed)));
     }
     for (const auto& [seen, earlier] : entries_) {
       if (seen == name)

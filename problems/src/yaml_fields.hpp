@@ -38,12 +38,16 @@ struct Field {
 };
 
 // One mapping of the file whose keys are checked on construction: every key a plain
-// string from `allowed`, none repeated. Every field found is entered in `lines`
+// string from `allowed` (any plain word when `allowed` is empty: a mapping from names,
+// such as `balls`), none repeated. Every field found is entered in `lines`
 // (path -> line), so that later checks can point back into the file.
 class Mapping {
  public:
   Mapping(const Field& mapping, std::initializer_list<std::string_view> allowed,
           std::map<std::string, int>& lines);
+
+  // Its fields in the order the file gives them.
+  const std::vector<std::pair<std::string, Field>>& entries() const { return entries_; }
 
   // The field under `key`, or nothing when the file leaves it out.
   std::optional<Field> find(std::string_view key) const;
@@ -59,6 +63,14 @@ class Mapping {
   int line_ = 0;
   std::vector<std::pair<std::string, Field>> entries_;
 };
+
+// " (did you mean CANDIDATE?)" for the candidate spelled closest to `name` (within two
+// edits), or "".
+std::string did_you_mean(std::string_view name, const std::vector<std::string_view>& candidates);
+// One of `names` (a word from a fixed list, or a name the file defines); otherwise a
+// FieldError: "must be one of A, B, got "X" (did you mean B?)" with `what` for "one of".
+std::string one_of(const Field& field, const std::vector<std::string_view>& names,
+                   std::string_view what = "one of");
 
 // A plain finite number; quoted strings, .nan, .inf, booleans and the like are refused.
 double number(const Field& field);

@@ -64,7 +64,40 @@ const FileCase kFileCases[] = {
      "2: cue_ball: lies inside the bottom_left pocket"},
     {"MisspeltKey", "cue_ball: [1,1]\ntarget: [2,1]\ntolerence: 0.1\n",
      "3: tolerence: unknown key; expected one of name, table, ball, physics, cue_ball, target, "
-     "tolerance, obstacles, limits, max_strokes, time_budget_s (did you mean tolerance?)"},
+     "tolerance, obstacles, balls, limits, max_strokes, time_budget_s, pot, first_contact (did "
+     "you mean tolerance?)"},
+    {"BallOffTable",
+     "balls:\n  red: [1.5,0.9]\n  blue: [3.6,0.9]\ncue_ball: [1,1]\ntarget: [2,1]\n",
+     "3: balls.blue: (3.6, 0.9) lies off the table: its centre must be within [0.02406, 3.545] x "
+     "[0.02406, 1.754] m"},
+    {"BallsOverlap", "balls: {red: [1.5,0.9], blue: [1.52,0.9]}\ncue_ball: [1,1]\ntarget: [2,1]\n",
+     "1: balls.red: overlaps balls.blue"},
+    {"BallOnObstacle",
+     "obstacles: [[1.5,0.9]]\nballs:\n  red: [1.5,0.93]\ncue_ball: [1,1]\ntarget: [2,1]\n",
+     "3: balls.red: overlaps obstacles[0]"},
+    {"CueBallOnBall", "balls: {red: [1.03,1]}\ncue_ball: [1,1]\ntarget: [2,1]\n",
+     "2: cue_ball: overlaps balls.red"},
+    {"UnknownBallModel", "physics: {ball_model: mathavan_2015}\ncue_ball: [1,1]\ntarget: [2,1]\n",
+     "1: physics.ball_model: must be one of mathavan_2014, frictional_inelastic, got "
+     "\"mathavan_2015\" (did you mean mathavan_2014?)"},
+    {"UnknownBallName",
+     "balls: {red: [1.5,0.9]}\npot: {ball: ред, pocket: top_left}\ncue_ball: [1,1]\n"
+     "target: [2,1]\n",
+     "2: pot.ball: must be the name of a ball in balls: red, got \"ред\""},
+    {"MisspeltBallName",
+     "balls: {red: [1.5,0.9], yellow: [2.5,0.9]}\nfirst_contact: yelow\ncue_ball: [1,1]\n"
+     "target: [2,1]\n",
+     "2: first_contact: must be the name of a ball in balls: red, yellow, got \"yelow\" (did you "
+     "mean yellow?)"},
+    {"UnknownPocket",
+     "balls: {red: [1.5,0.9]}\npot: {ball: red, pocket: top_midle}\ncue_ball: [1,1]\n"
+     "target: [2,1]\n",
+     "2: pot.pocket: must be one of bottom_left, bottom_middle, bottom_right, top_left, "
+     "top_middle, top_right, got \"top_midle\" (did you mean top_middle?)"},
+    {"BallFrictionTooHigh", "physics: {mu_ball: 1.5}\ncue_ball: [1,1]\ntarget: [2,1]\n",
+     "1: physics.mu_ball: times physics.mu_slide must be below 2/7 for mathavan_2014: a larger "
+     "friction could hold a ball's slip on the cloth at zero, which the model does not describe, "
+     "got 1.5"},
     {"SpeedLimits", "cue_ball: [1,1]\ntarget: [2,1]\nlimits: {speed: [3, 1]}\n",
      "3: limits.speed: min must be below max, got [3, 1]"},
     {"YamlSyntax", "cue_ball: [1,1\ntarget: [2,1]\n",

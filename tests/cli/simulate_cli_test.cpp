@@ -39,6 +39,11 @@ std::string g6(double value, const char* unit) {
   return buf;
 }
 
+// The header of `simulate --batch`'s output.
+constexpr const char* kBatchHeader =
+    "speed,aim_deg,topspin_k,sidespin_k,final_x,final_y,cushion_hits,pocketed,hit_obstacle,"
+    "duration,miss_distance,reaches_target,status,message,first_contact,pocketed_balls";
+
 // The shot the one-rail problem file records as solving it.
 constexpr const char* kOneRailShot = "--speed 1.002 --aim -60.36 --topspin-k 0.8 --sidespin-k 0";
 const phys::Shot kOneRail{1.002, -60.36, 0.8, 0.0};
@@ -154,6 +159,79 @@ TEST(Simulate, SamplesEstimateTheSuccessWithItsInterval) {
   EXPECT_NE(text.out.find("success         "), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("(95 % interval "), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("of 120 noisy strokes solve the problem"), std::string::npos) << text.out;
+}
+
+// A table with object balls: a cut pots the red into the bottom-left corner, the yellow
+// is never touched.
+constexpr const char* kPotProblem =
+    "name: cut into the corner\n"
+    "balls: {red: [0.25, 0.25], yellow: [2.0, 1.2]}\n"
+    "pot: {ball: red, pocket: bottom_left}\n"
+    "cue_ball: [1.0, 0.5]\ntarget: [2.0, 1.0]\n";
+constexpr const char* kPotShot = "--speed 2 --aim 196.63 --topspin-k 1";
+
+TEST(SimulateBalls, JsonDescribesEveryBallAsTheLibraryDoes) {
+  const fs::path file = scratch() / "pot.yaml";
+  write_text(file, kPotProblem);
+  const ProcessResult run =
+      cueplan("simulate '" + file.string() + "' " + kPotShot + " --json", "pot_json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  const prob::LoadResult loaded = prob::load_problem(file.string());
+  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const phys::ShotResult expected = library_shot(*loaded.problem, {2.0, 196.63, 1.0, 0.0});
+  ASSERT_EQ(expected.balls.size(), 3u);
+  ASSERT_TRUE(expected.balls[1].pocketed);  // the case is what it says
+  EXPECT_EQ(j.at("first_contact"), "red");
+  const json& balls = j.at("balls");
+  ASSERT_EQ(balls.size(), 3u);
+  for (size_t k = 0; k < balls.size(); ++k) {
+    const phys::BallOutcome& b = expected.balls[k];
+    const json& e = balls[k];
+    EXPECT_EQ(e.at("name"), b.name);
+    EXPECT_DOUBLE_EQ(e.at("final_position")[0].get<double>(), b.final_position.x) << b.name;
+    EXPECT_DOUBLE_EQ(e.at("final_position")[1].get<double>(), b.final_position.y) << b.name;
+    EXPECT_EQ(e.at("pocketed").get<bool>(), b.pocketed) << b.name;
+    EXPECT_EQ(e.at("cushion_hits").get<int>(), b.cushion_hits) << b.name;
+    ASSERT_EQ(e.at("events").size(), b.events.size()) << b.name;
+    for (size_t i = 0; i < b.events.size(); ++i)
+      EXPECT_EQ(e["events"][i].at("type"), phys::to_string(b.events[i].type)) << b.name << i;
+  }
+  EXPECT_EQ(balls[0].at("name"), "cue");
+  EXPECT_EQ(balls[1].at("pocket"), "bottom_left");
+  EXPECT_TRUE(balls[0].at("pocket").is_null());
+  EXPECT_EQ(balls[1].at("events")[0].at("type"), "ball_contact");
+  EXPECT_EQ(balls[1].at("events")[0].at("ball"), "cue");
+  EXPECT_GT(balls[1].at("events")[0].at("impulse").get<double>(), 0.0);
+  // The top-level keys still describe the cue ball.
+  EXPECT_EQ(j.at("events").size(), expected.events.size());
+  EXPECT_DOUBLE_EQ(j.at("final_position")[0].get<double>(), expected.final_position.x);
+  EXPECT_EQ(j.at("status"), "rest");
+}
+
+TEST(SimulateBalls, TextAndBatchNameTheFirstContactAndThePots) {
+  const fs::path file = scratch() / "pot.yaml";
+  write_text(file, kPotProblem);
+  const ProcessResult text = cueplan("simulate '" + file.string() + "' " + kPotShot, "pot_text");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  for (const char* needle :
+       {"first contact   red", "balls           3 (the cue ball first)", "yes, bottom_left",
+        "events of red", "ball red, approach", "pocket 0 (bottom_left)"})
+    EXPECT_NE(text.out.find(needle), std::string::npos) << needle << " not in\n" << text.out;
+  EXPECT_EQ(text.out.find("events of yellow"), std::string::npos) << "yellow never moved";
+
+  const fs::path input = scratch() / "pot_shots.csv";
+  write_text(input, "speed,aim_deg,topspin_k,sidespin_k\n2,196.63,1,0\n1,90,0,0\n");
+  const ProcessResult batch =
+      cueplan("simulate '" + file.string() + "' --batch '" + input.string() + "'", "pot_batch");
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  EXPECT_EQ(lines_of(batch.out).at(0), kBatchHeader);
+  const auto rows = csv_rows(batch.out);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("first_contact"), "red");
+  EXPECT_EQ(rows[0].at("pocketed_balls"), "red:bottom_left");
+  EXPECT_EQ(rows[1].at("first_contact"), "");
+  EXPECT_EQ(rows[1].at("pocketed_balls"), "");
 }
 
 // The paper scheme reaches the simulator too, and its answer is close to the exact one.
@@ -310,10 +388,6 @@ TEST(SimulateSvg, ObstacleAndOpenTablesAreDrawn) {
 
 // ---------------------------------------------------------------------------
 // --batch
-
-constexpr const char* kBatchHeader =
-    "speed,aim_deg,topspin_k,sidespin_k,final_x,final_y,cushion_hits,pocketed,hit_obstacle,"
-    "duration,miss_distance,reaches_target,status,message";
 
 TEST(SimulateBatch, EveryRowComesOutAndBadRowsAloneFail) {
   const fs::path input = scratch() / "shots.csv";

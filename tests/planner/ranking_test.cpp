@@ -152,6 +152,19 @@ TEST(CoachOrderTest, AStrokeWhoseIntervalLiesBelowAnothersIsNotFirst) {
   EXPECT_EQ(detail::coach_order({simple, hard}).front(), 1u);
 }
 
+TEST(CoachOrderTest, AStrokeDroppedFromTheRaceIsNotPreferredToOneSampledFully) {
+  // The simpler stroke was dropped after 100 draws as measurably worse than a stroke
+  // that later fell back; on those 100 draws the full stroke (19 of 200, 9 of its first
+  // 100) cannot be told from it (5 of 100), and its interval reaches the other's.
+  const std::vector<uint8_t> dropped = outcomes(5, 100);
+  std::vector<uint8_t> full = outcomes(9, 200);
+  for (size_t i = 100; i < 110; ++i) full[i] = detail::kSucceeded;
+  ASSERT_FALSE(detail::significantly_different(dropped, full));
+  const detail::RankItem simple = item(dropped, 0.2), hard = item(full, 0.5);
+  ASSERT_GE(simple.both.high, hard.both.low);
+  EXPECT_EQ(detail::coach_order({simple, hard}), (std::vector<size_t>{1, 0}));
+}
+
 TEST(CoachOrderTest, TheFirstStrokesIntervalIsNeverBelowAnother) {
   std::mt19937_64 rng(5);
   for (int trial = 0; trial < 300; ++trial) {

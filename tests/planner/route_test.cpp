@@ -308,3 +308,22 @@ TEST(RouteProblemFields, LoaderReadsAndChecksThem) {
 
 }  // namespace
 }  // namespace cueplan::planner
+
+namespace cueplan::planner {
+namespace {
+
+TEST(Route, ObjectBallsAreRefusedNamingTheField) {
+  // A route's state is the cue ball alone; strokes that move object balls are not planned.
+  problems::Problem p = route_problem("two_stroke_blocked");
+  p.scene.balls = {{"red", {2.0, 1.4}}};
+  const RouteResult r = plan_route(p, quick());
+  EXPECT_EQ(r.status, RouteStatus::invalid_input);
+  ASSERT_TRUE(r.error.has_value());
+  EXPECT_EQ(r.error->field, (physics::FieldPath{"scene", "balls"}));
+  EXPECT_NE(r.message.find("balls are not planned for by routes yet"), std::string::npos)
+      << r.message;
+  EXPECT_TRUE(r.strokes.empty());
+}
+
+}  // namespace
+}  // namespace cueplan::planner

@@ -20,10 +20,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The files directly in problems/ and in problems/pots/ (the examples with object balls
+// and a pot), as stems relative to problems/: "one_rail_position", "pots/plant_two_balls".
 std::vector<std::string> shipped_examples() {
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(CUEPLAN_PROBLEMS_DIR)) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  for (const char* dir : {"", "pots/"}) {
+    for (const auto& entry :
+         fs::directory_iterator(std::string(CUEPLAN_PROBLEMS_DIR) + "/" + dir)) {
+      if (entry.path().extension() == ".yaml")
+        names.push_back(std::string(dir) + entry.path().stem().string());
+    }
   }
   std::sort(names.begin(), names.end());
   return names;
@@ -48,7 +54,7 @@ table:                             # optional; defaults: a snooker table
   pockets: standard                # standard or none
   pocket_radius: 0.045             # m, capture circle around each pocket point
 ball: {radius: 0.02625, mass: 0.1406}
-physics: {mu_slide: 0.212, mu_roll: 0.01, mu_spin: 0.044, mu_cushion: 0.14,
+physics: {mu_slide: 0.212, mu_roll: 0.01, mu_spin: 0.0117, mu_cushion: 0.14,
           restitution: 0.98, cushion_height: 0.03675, gravity: 9.81}
 cue_ball: [0.8, 0.5]               # m
 target: [2.6, 1.2]                 # m, where the cue ball should stop
@@ -60,6 +66,9 @@ limits:                            # search space and constraints for the planne
   aim_deg: free                    # free, a number, or [lo, hi]
   cushions: [1, 3]                 # cushion contacts allowed before rest
 )";
+
+// The two required fields, for files that test the others.
+constexpr const char* kPositions = "cue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n";
 
 Problem parse_ok(const std::string& text) {
   LoadResult r = parse_problem(text, "test.yaml");
@@ -115,14 +124,45 @@ TEST_P(ShippedProblem, WitnessShotInItsHeaderReachesTheTarget) {
       << miss_distance(p, outcome) << " m from the target after " << outcome.cushion_hits
       << " cushions";
   EXPECT_EQ(outcome.cushion_hits, cushions);
-  // Recorded to a few mm inside a 15-30 mm zone: flag a drift before it breaks.
+  // Recorded to a few mm inside a 15-50 mm zone: flag a drift before it breaks.
   EXPECT_LT(miss_distance(p, outcome), 0.005);
+  // A file with a pot: the witness makes it, striking the named ball first.
+  if (p.pot) {
+    EXPECT_TRUE(makes_pot(p, outcome))
+        << p.pot->ball << " not in " << pocket_name(p.scene, p.pot->pocket);
+    const std::string potting =
+        "potting " + p.pot->ball + " in " + pocket_name(p.scene, p.pot->pocket);
+    EXPECT_NE(text.substr(at, text.find('\n', at) - at).find(potting), std::string::npos)
+        << "the witness line should say '" << potting << "'";
+  }
+  if (p.first_contact) {
+    ASSERT_GT(outcome.first_contact, 0);
+    EXPECT_EQ(outcome.balls[static_cast<size_t>(outcome.first_contact)].name, *p.first_contact);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Problems, ShippedProblem, testing::ValuesIn(shipped_examples()),
                          [](const testing::TestParamInfo<std::string>& param) {
-                           return param.param;
+                           std::string name = param.param;
+                           std::replace(name.begin(), name.end(), '/', '_');
+                           return name;
                          });
+
+TEST(ShippedProblems, PotExamplesHoldObjectBallsAndAPot) {
+  int pots = 0;
+  bool two_object_balls = false;
+  for (const std::string& name : shipped_examples()) {
+    if (name.rfind("pots/", 0) != 0) continue;
+    const LoadResult r = load_problem(example_path(name));
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_FALSE(r.problem->scene.balls.empty()) << name;
+    EXPECT_TRUE(r.problem->pot.has_value()) << name;
+    two_object_balls = two_object_balls || r.problem->scene.balls.size() >= 2;
+    ++pots;
+  }
+  EXPECT_GE(pots, 3);
+  EXPECT_TRUE(two_object_balls) << "a plant or kiss needs two object balls";
+}
 
 TEST(ShippedProblems, BlockedRouteHasNoClearStraightPath) {
   const LoadResult r = load_problem(example_path("blocked_direct_route"));
@@ -192,7 +232,7 @@ TEST(ProblemValues, FullFormatExampleRoundTripsEveryValue) {
   EXPECT_DOUBLE_EQ(p.scene.cloth.mu_slide, 0.212);
   EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_table, 0.212);
   EXPECT_DOUBLE_EQ(p.scene.cloth.mu_roll, 0.01);
-  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_spin, 0.044);
+  EXPECT_DOUBLE_EQ(p.scene.cloth.mu_spin, 0.0117);
   EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mu_cushion, 0.14);
   EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.restitution, 0.98);
   EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.cushion_height, 0.03675);
@@ -276,6 +316,88 @@ TEST(ProblemValues, ExplicitNumberTagsAndExponentsAreNumbers) {
   EXPECT_DOUBLE_EQ(p.target.y, 0.5);
 }
 
+TEST(ProblemValues, ObjectBallsPotAndBallPhysicsReachTheirFields) {
+  const Problem p = parse_ok(
+      "physics: {mu_ball: 0.06, ball_restitution: 0.93, ball_model: frictional_inelastic,\n"
+      "          ball_friction: speed_dependent}\n"
+      "balls:\n  red: [1.5, 0.9]\n  yellow: [2.0, 0.4]\n"
+      "pot: {ball: yellow, pocket: bottom_right}\nfirst_contact: red\n"
+      "cue_ball: [1, 1]\ntarget: [1.5, 0.9]\n");
+  ASSERT_EQ(p.scene.balls.size(), 2u);
+  EXPECT_EQ(p.scene.balls[0].name, "red");  // in the file's order
+  EXPECT_DOUBLE_EQ(p.scene.balls[0].position.x, 1.5);
+  EXPECT_DOUBLE_EQ(p.scene.balls[0].position.y, 0.9);
+  EXPECT_EQ(p.scene.balls[1].name, "yellow");
+  EXPECT_DOUBLE_EQ(p.scene.balls[1].position.y, 0.4);
+  EXPECT_DOUBLE_EQ(p.scene.ball_contact.mu_ball, 0.06);
+  EXPECT_DOUBLE_EQ(p.scene.ball_contact.restitution, 0.93);
+  EXPECT_EQ(p.scene.ball_contact.model, physics::BallModel::frictional_inelastic);
+  EXPECT_EQ(p.scene.ball_contact.friction, physics::BallFriction::speed_dependent);
+  ASSERT_TRUE(p.pot.has_value());
+  EXPECT_EQ(p.pot->ball, "yellow");
+  EXPECT_EQ(p.pot->pocket, 2);
+  EXPECT_EQ(pocket_name(p.scene, p.pot->pocket), "bottom_right");
+  EXPECT_EQ(p.first_contact, "red");
+  // The target may be where an object ball lies: the shot can move it away.
+  EXPECT_DOUBLE_EQ(p.target.x, 1.5);
+  const std::string text = describe(p);
+  for (const char* part : {"object balls red, yellow", "frictional_inelastic",
+                           "pot yellow into bottom_right", "first contact red"})
+    EXPECT_NE(text.find(part), std::string::npos) << part << " not in:\n" << text;
+  // Left out: no balls, the collision defaults of PHYSICS.md, no pot.
+  const Problem bare = parse_ok(kPositions);
+  EXPECT_TRUE(bare.scene.balls.empty());
+  EXPECT_DOUBLE_EQ(bare.scene.ball_contact.mu_ball, 0.05);
+  EXPECT_DOUBLE_EQ(bare.scene.ball_contact.restitution, 0.89);
+  EXPECT_EQ(bare.scene.ball_contact.model, physics::BallModel::mathavan_2014);
+  EXPECT_FALSE(bare.pot.has_value());
+  EXPECT_FALSE(bare.first_contact.has_value());
+}
+
+TEST(ProblemShotChecks, APotIsMadeOnlyByItsBallInItsPocket) {
+  const Problem p = parse_ok("balls: {red: [1.5, 0.9]}\npot: {ball: red, pocket: top_left}\n" +
+                             std::string(kPositions));
+  physics::ShotResult r;
+  r.balls.resize(2);
+  r.balls[0].name = "cue";
+  r.balls[1].name = "red";
+  EXPECT_FALSE(makes_pot(p, r));
+  r.balls[1].pocketed = true;
+  r.balls[1].pocket = 3;  // top_left
+  EXPECT_TRUE(makes_pot(p, r));
+  r.balls[1].pocket = 4;
+  EXPECT_FALSE(makes_pot(p, r));
+  r.balls[0].pocketed = true;  // the cue ball in top_left is not the red
+  r.balls[0].pocket = 3;
+  r.balls[1].pocketed = false;
+  EXPECT_FALSE(makes_pot(p, r));
+  EXPECT_FALSE(makes_pot(parse_ok(kPositions), r));
+}
+
+// validate() is the one check: a problem built in code gets the loader's rules.
+TEST(ProblemValidate, PotAndFirstContactMustNameWhatIsOnTheTable) {
+  Problem p = parse_ok("balls: {red: [1.5, 0.9]}\n" + std::string(kPositions));
+  p.pot = Pot{"blue", 0};
+  ASSERT_TRUE(validate(p).has_value());
+  EXPECT_EQ(validate(p)->field, (physics::FieldPath{"pot", "ball"}));
+  p.pot = Pot{"red", 6};
+  ASSERT_TRUE(validate(p).has_value());
+  EXPECT_EQ(validate(p)->field, (physics::FieldPath{"pot", "pocket"}));
+  p.pot = Pot{"red", 5};
+  EXPECT_FALSE(validate(p).has_value());
+  p.first_contact = "cue";
+  ASSERT_TRUE(validate(p).has_value());
+  EXPECT_EQ(file_field(validate(p)->field), "first_contact");
+  p.first_contact.reset();
+  p.scene.balls.push_back({"blue", {1.5, 0.91}});
+  ASSERT_TRUE(validate(p).has_value());
+  EXPECT_EQ(file_message(*validate(p)), "balls.red overlaps balls.blue");
+  p.scene.balls.pop_back();
+  p.scene.ball_contact.restitution = 0.0;
+  ASSERT_TRUE(validate(p).has_value());
+  EXPECT_EQ(file_field(validate(p)->field), "physics.ball_restitution");
+}
+
 // ---- Shots against a problem ---------------------------------------------------
 
 TEST(ProblemShotChecks, LimitsBoundSpeedSpinAndAimModuloTurns) {
@@ -336,8 +458,6 @@ struct BadInput {
 
 void PrintTo(const BadInput& c, std::ostream* os) { *os << c.name; }
 
-constexpr const char* kPositions = "cue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n";
-
 class BadProblemFile : public testing::TestWithParam<BadInput> {};
 
 TEST_P(BadProblemFile, ErrorNamesFileLineAndFieldWithoutThrowing) {
@@ -358,8 +478,9 @@ const BadInput kBadInputs[] = {
      "did you mean tolerance"},
     {"UnknownNestedKey", "table:\n  length: 3.5\n  widht: 1.7\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
      3, "table.widht", "unknown key"},
-    {"UnknownKeyInFlowMapping", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {speed: [1, 2], spn: 1}\n",
-     3, "limits.spn", "did you mean spin"},
+    {"UnknownKeyInFlowMapping",
+     "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits: {speed: [1, 2], spn: 1}\n", 3, "limits.spn",
+     "did you mean spin"},
     {"MappingWhereNumber", "cue_ball: [1, 1]\ntarget: [2, 1]\ntolerance: {a: 1}\n", 3, "tolerance",
      "must be a number, got a mapping"},
     {"NumberWherePoint", "cue_ball: 0.5\ntarget: [2, 1]\n", 1, "cue_ball", "got \"0.5\""},
@@ -384,8 +505,8 @@ const BadInput kBadInputs[] = {
      "table.length", "positive"},
     {"ZeroRadius", "ball: {radius: 0, mass: 0.1}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
      "ball.radius", "positive"},
-    {"NegativePocketRadius", "table: {pocket_radius: -0.04}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
-     1, "table.pocket_radius", "positive"},
+    {"NegativePocketRadius", "table: {pocket_radius: -0.04}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "table.pocket_radius", "positive"},
     {"UnknownPocketsWord", "table:\n  pockets: six\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
      "table.pockets", "standard or none"},
     {"ZeroSlidingFriction", "physics:\n  mu_slide: 0\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
@@ -393,10 +514,11 @@ const BadInput kBadInputs[] = {
     {"RestitutionAboveOne",
      "cue_ball: [1, 1]\ntarget: [2, 1]\nphysics:\n  gravity: 9.81\n  restitution: 1.2\n", 5,
      "physics.restitution", "(0, 1]"},
-    {"CushionBelowBallCentre", "physics: {cushion_height: 0.02}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
-     1, "physics.cushion_height", "between radius and 2*radius"},
-    {"CushionFrictionTooHigh", "physics: {mu_cushion: 0.5}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
-     1, "physics.mu_cushion", "tan(theta)"},
+    {"CushionBelowBallCentre",
+     "physics: {cushion_height: 0.02}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "physics.cushion_height", "between radius and 2*radius"},
+    {"CushionFrictionTooHigh", "physics: {mu_cushion: 0.5}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "physics.mu_cushion", "tan(theta)"},
     {"BallTooBigForTable", "ball: {radius: 1.0}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
      "ball.radius", "leaves no room for the ball on the table"},
     {"CueBallOffTable", "cue_ball: [0.01, 0.5]\ntarget: [2, 1]\n", 1, "cue_ball",
@@ -407,11 +529,13 @@ const BadInput kBadInputs[] = {
      3, "cue_ball", "overlaps obstacles[0]"},
     {"TargetInsideObstacle", "obstacles: [[2.0, 1.0]]\ncue_ball: [1, 1]\ntarget: [2.03, 1.0]\n", 3,
      "target", "overlaps obstacles[0]"},
-    {"ObstacleOffTable", "obstacles:\n  - [1.0, 1.0]\n  - [5.0, 1.0]\ncue_ball: [0.5, 0.5]\n"
-                         "target: [2, 1]\n",
+    {"ObstacleOffTable",
+     "obstacles:\n  - [1.0, 1.0]\n  - [5.0, 1.0]\ncue_ball: [0.5, 0.5]\n"
+     "target: [2, 1]\n",
      3, "obstacles[1]", "off the table"},
-    {"ObstaclesOverlap", "obstacles:\n  - [1.0, 1.0]\n  - [1.03, 1.0]\ncue_ball: [0.5, 0.5]\n"
-                         "target: [2, 1]\n",
+    {"ObstaclesOverlap",
+     "obstacles:\n  - [1.0, 1.0]\n  - [1.03, 1.0]\ncue_ball: [0.5, 0.5]\n"
+     "target: [2, 1]\n",
      3, "obstacles[1]", "overlaps obstacles[0]"},
     {"TargetInPocket", "cue_ball: [1, 1]\ntarget: [0.03, 0.03]\n", 2, "target",
      "lies inside the bottom_left pocket"},
@@ -448,8 +572,8 @@ const BadInput kBadInputs[] = {
      "limits.cushions", "lo must not exceed hi"},
     {"AimRangeReversed", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  aim_deg: [30, 10]\n", 4,
      "limits.aim_deg", "lo < hi"},
-    {"AimRangeOverATurn", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  aim_deg: [-200, 200]\n",
-     4, "limits.aim_deg", "lo + 360"},
+    {"AimRangeOverATurn", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  aim_deg: [-200, 200]\n", 4,
+     "limits.aim_deg", "lo + 360"},
     {"AimUnknownWord", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  aim_deg: any\n", 4,
      "limits.aim_deg", "free, an angle"},
     {"DuplicatedKey", "cue_ball: [1, 1]\ntarget: [2, 1]\ncue_ball: [1.2, 1]\n", 3, "cue_ball",
@@ -469,6 +593,75 @@ const BadInput kBadInputs[] = {
     {"BadIndentation", "table:\n  length: 3.5\n width: 1.7\ncue_ball: [1, 1]\n", 3, "yaml",
      "column"},
     {"TabIndentation", "table:\n\tlength: 3.5\n", 2, "yaml", ""},
+    // Object balls, the collision between balls, the pot.
+    {"BallOffTable",
+     "balls:\n  red: [1.5, 0.9]\n  blue: [5.0, 1.0]\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     3, "balls.blue", "lies off the table"},
+    {"BallsOverlap",
+     "balls: {red: [1.5, 0.9], blue: [1.52, 0.9]}\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     1, "balls.red", "overlaps balls.blue"},
+    {"BallOnObstacle",
+     "obstacles: [[1.5, 0.9]]\nballs:\n  red: [1.52, 0.9]\n"
+     "cue_ball: [1, 1]\ntarget: [2, 1]\n",
+     3, "balls.red", "overlaps obstacles[0]"},
+    {"BallInMiddlePocket", "balls:\n  red: [1.7845, 0.03]\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "balls.red", "lies inside the bottom_middle pocket"},
+    {"BallNamedCue", "balls:\n  cue: [1.5, 0.9]\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "balls.cue", "names the cue ball"},
+    {"BallsAsAList", "balls: [[1.5, 0.9]]\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1, "balls",
+     "must be a mapping from each object ball's name to its centre [x, y]"},
+    {"BallNotAPoint", "balls: {red: 1.5}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1, "balls.red",
+     "point [x, y]"},
+    {"BallTwice",
+     "balls:\n  red: [1.5, 0.9]\n  red: [2.0, 0.9]\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     3, "balls.red", "duplicated key (first given at line 2)"},
+    {"CueBallOnBall", "balls: {red: [1.02, 1.0]}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "cue_ball", "overlaps balls.red"},
+    {"UnknownBallModel", "physics: {ball_model: mathavan_2041}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     1, "physics.ball_model",
+     "must be one of mathavan_2014, frictional_inelastic, got \"mathavan_2041\" (did you mean "
+     "mathavan_2014?)"},
+    {"UnknownBallFriction", "physics:\n  ball_friction: speed\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     2, "physics.ball_friction", "must be one of constant, speed_dependent"},
+    {"BallRestitutionAboveOne",
+     "physics:\n  ball_restitution: 1.2\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "physics.ball_restitution", "must lie in (0, 1], got 1.2"},
+    {"NegativeBallFriction", "physics: {mu_ball: -0.1}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "physics.mu_ball", "must not be negative"},
+    {"BallFrictionTooHigh",
+     "physics:\n  mu_slide: 0.2\n  mu_ball: 2.0\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 3,
+     "physics.mu_ball", "times physics.mu_slide must be below 2/7"},
+    {"PotOfAnUnknownBall",
+     "balls: {red: [1.5, 0.9]}\npot: {ball: rde, pocket: top_left}\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     2, "pot.ball", "got \"rde\" (did you mean red?)"},
+    {"PotIntoAnUnknownPocket",
+     "balls: {red: [1.5, 0.9]}\npot:\n  ball: red\n  pocket: top_centre\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     4, "pot.pocket", "must be one of bottom_left, bottom_middle"},
+    {"PotOnATableWithoutPockets",
+     "table: {pockets: none}\nballs: {red: [1.5, 0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "cue_ball: [1, 1]\ntarget: [2, 1]\n",
+     3, "pot.pocket", "the table has none (table.pockets: none)"},
+    {"PotWithoutAPocket",
+     "balls: {red: [1.5, 0.9]}\npot: {ball: red}\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     2, "pot.pocket", "missing"},
+    {"PotUnknownKey",
+     "balls: {red: [1.5, 0.9]}\npot: {ball: red, pocket: top_left, spin: 1}\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     2, "pot.spin", "unknown key; expected one of ball, pocket"},
+    {"FirstContactUnknown",
+     "balls: {red: [1.5, 0.9], blue: [2.0, 0.9]}\nfirst_contact: bleu\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     2, "first_contact",
+     "must be the name of a ball in balls: red, blue, got \"bleu\" (did you "
+     "mean blue?)"},
+    {"FirstContactWithoutBalls", "first_contact: red\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "first_contact", "names an object ball, but the file has no balls"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Problems, BadProblemFile, testing::ValuesIn(kBadInputs),

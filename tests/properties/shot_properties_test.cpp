@@ -1,6 +1,7 @@
 // Properties of the shot simulator on random strokes (RapidCheck): the mirrors and the
 // half turn of the table, energy along the path, determinism, the event cap and the
-// ball staying on the table. tests/physics/shot_simulator_test.cpp checks the same
+// ball staying on the table; with object balls, the mirror, energy across contacts and
+// no overlaps. tests/physics/shot_simulator_test.cpp checks the same
 // ideas on fixed shots and against closed-form motion.
 // Reproduce a failure with RC_PARAMS="seed=<the seed printed>".
 #include <gtest/gtest.h>
@@ -9,6 +10,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
+#include <vector>
 
 #include "cueplan/physics/shot.hpp"
 #include "support/physics_checks.hpp"
@@ -130,6 +133,92 @@ RC_GTEST_PROP(ShotProperties, TheBallRestsOnTheTable, ()) {
     RC_ASSERT(r.final_position.y >= off - 1e-12 && r.final_position.y <= s.width - off + 1e-12);
     RC_ASSERT(r.events.back().velocity.x == 0.0 && r.events.back().velocity.y == 0.0);
   }
+}
+
+}  // namespace
+}  // namespace cueplan::physics
+
+// ---- Object balls ----------------------------------------------------------------
+
+namespace cueplan::physics {
+namespace {
+
+// One to four object balls at random places where balls may lie (never on the cue ball).
+Scene with_random_balls(Scene s, Vec2 cue) {
+  const int n = *rc::gen::inRange(1, 5);
+  for (int i = 0; i < n; ++i) {
+    s.balls.push_back({"b" + std::to_string(i), draw_spot(s)});
+    if (s.validate() || s.check_position(cue, {"cue_ball"})) s.balls.pop_back();
+  }
+  return s;
+}
+
+// A stroke that, half the time, goes near the first object ball (within 10 deg).
+Shot draw_shot_at_balls(const Scene& s, Vec2 cue) {
+  Shot shot = draw_shot();
+  if (!s.balls.empty() && *rc::gen::arbitrary<bool>()) {
+    const Vec2 b = s.balls.front().position;
+    shot.aim_deg = std::atan2(b.y - cue.y, b.x - cue.x) * 180.0 / std::numbers::pi +
+                   *in_range(-10.0, 10.0);
+  }
+  return shot;
+}
+
+RC_GTEST_PROP(ShotProperties, MirrorSymmetryWithObjectBalls, ()) {
+  // Across y = W/2, every ball's outcome mirrors (pockets bottom <-> top).
+  const Scene base = snooker_scene();
+  const Vec2 p = draw_spot(base);
+  const Scene s = with_random_balls(base, p);
+  Scene m = s;
+  for (ObjectBall& b : m.balls) b.position.y = s.width - b.position.y;
+  const Shot shot = draw_shot_at_balls(s, p);
+  const ShotResult a = simulate(s, p, shot);
+  const ShotResult b = simulate(m, {p.x, s.width - p.y},
+                                {shot.speed, -shot.aim_deg, shot.topspin_k, -shot.sidespin_k});
+  RC_CLASSIFY(a.first_contact > 0, "the cue ball strikes a ball");
+  // A push of balls pressed together (collision_failed) and a cascade of ever smaller
+  // contacts that reaches the event cap are no outcome, and rounding decides which of
+  // the two a mirror image meets: the symmetry holds for shots with an outcome.
+  const auto outcome = [](const ShotResult& r) {
+    return r.status != ShotStatus::collision_failed && r.status != ShotStatus::event_limit;
+  };
+  RC_PRE(outcome(a) && outcome(b));
+  RC_ASSERT(a.status == b.status);
+  RC_ASSERT(a.first_contact == b.first_contact);
+  for (size_t k = 0; k < a.balls.size(); ++k) {
+    RC_ASSERT(a.balls[k].pocketed == b.balls[k].pocketed);
+    RC_ASSERT(a.balls[k].cushion_hits == b.balls[k].cushion_hits);
+    RC_ASSERT(std::abs(b.balls[k].final_position.x - a.balls[k].final_position.x) <= 1e-6);
+    RC_ASSERT(std::abs(b.balls[k].final_position.y - (s.width - a.balls[k].final_position.y)) <=
+              1e-6);
+  }
+}
+
+RC_GTEST_PROP(ShotProperties, ObjectBallsNeitherGainEnergyNorOverlap, ()) {
+  // Each ball's energy never rises on the cloth nor across a cushion; two balls' energy
+  // never rises across their contact; balls in contact are 2R apart and none overlap.
+  Scene base = snooker_scene();
+  base.ball_contact.model =
+      *rc::gen::element(BallModel::mathavan_2014, BallModel::frictional_inelastic);
+  base.ball_contact.restitution = *in_range(0.5, 1.0);
+  const Vec2 p = draw_spot(base);
+  const Scene s = with_random_balls(base, p);
+  const ShotResult r = simulate(s, p, draw_shot_at_balls(s, p));
+  RC_ASSERT(test::all_finite(r));
+  std::vector<test::PathAudit> audits;
+  for (const BallOutcome& b : r.balls) {
+    audits.push_back(test::audit_path(s, b.events, b.path));
+    RC_ASSERT(audits.back().max_energy_gain <= 1e-10);
+    RC_ASSERT(audits.back().max_impact_energy_gain <= 1e-9);
+    RC_ASSERT(audits.back().max_outside <= 1e-12);
+    RC_ASSERT(audits.back().segments_matched);
+  }
+  const test::ContactAudit contacts = test::audit_contacts(s, r, audits);
+  RC_CLASSIFY(contacts.contacts > 0, "balls collide");
+  RC_ASSERT(contacts.paired);
+  RC_ASSERT(contacts.max_gap <= 1e-9);
+  RC_ASSERT(contacts.max_energy_gain <= 1e-8);
+  RC_ASSERT(contacts.max_overlap <= 1e-9);
 }
 
 }  // namespace

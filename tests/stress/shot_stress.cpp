@@ -3,16 +3,23 @@
 // Scenes: the snooker table, random sizes and tables with just room for a ball; other
 // balls, cushions and cloths; pockets or none; the cue ball touching a cushion or in a
 // corner; obstacle balls touching the cue ball, each other and the cushions, or lying
-// in a pocket; scenes built to bounce for ever (elastic frictionless cushions, almost
-// no friction on the cloth) to reach the event cap. Strokes: speeds from 1e-6 to 20 m/s,
-// any aim, spins inside the miscue limit and far beyond it, both impact methods, and
-// small event caps. A few inputs in twenty are spoiled (zero-length table, negative
-// radius, NaN, ...). Checks, per shot:
-//   - every number in the result, its events and its path is finite;
-//   - the simulation ends: at most max_events + 1 events, and event_limit says so;
-//   - the kinetic energy never rises along the events and inside the path segments,
-//     and the centre never leaves the cushion lines;
-//   - the status agrees with the last event;
+// in a pocket; object balls (one scene in three, 1 to 8 of them, 15 now and then)
+// touching the cue ball, each other or an obstacle, on the stroke's line, by a pocket,
+// with either collision model; scenes built to bounce for ever (elastic frictionless
+// cushions, almost no friction on the cloth) to reach the event cap. Strokes: speeds
+// from 1e-6 to 20 m/s, any aim, spins inside the miscue limit and far beyond it, both
+// impact methods, and small event caps. A few inputs in twenty are spoiled (zero-length
+// table, negative radius, NaN, a ball off the table, ...). Checks, per shot:
+//   - every number in the result, every ball's events and path is finite;
+//   - the simulation ends: at most max_events + 1 events of all balls (+ 4 with object
+//     balls: a contact logs one event for each ball, rests at one instant one each), and
+//     event_limit says so;
+//   - each ball's kinetic energy never rises along its events and inside its path
+//     segments except where another ball strikes it, two balls' energy never rises
+//     across their contact, and no centre leaves the cushion lines;
+//   - balls in contact are 2R apart, and no two balls (nor a ball and an obstacle) ever
+//     overlap, at any event or half-way along any path segment (to 1e-6 of 2R);
+//   - the status agrees with the balls' last events;
 //   - spoiled input is refused with a message naming the field;
 //   - the same input gives the same events (one shot in a thousand).
 // Prints the counts; exits 1 when a check fails, 2 for bad arguments.
@@ -50,6 +57,15 @@ constexpr double kPaperEnergySlack = 1e-3;
 // The exact method's error at the simulator's default accuracy (1e-9) can show as a
 // gain where nothing is lost (e = 1, no friction at the cloth).
 constexpr double kExactImpactEnergySlack = 1e-9;
+// The same for a ball-ball collision (its error stays below 100 tolerances of the speed,
+// bench/README.md, and the energy's below twice that). A ball at rest before a contact
+// is counted with the sidespin it had when it stopped, which only adds to "before".
+constexpr double kCollisionEnergySlack = 1e-8;
+// How far, in units of 2R, balls in contact may be from 2R apart, and any two balls may
+// overlap: a contact missed lets balls pass through each other (overlaps of order 1);
+// rounding in the cascades of ever smaller contacts of balls pressed together leaves
+// them a few 1e-7 inside.
+constexpr double kContactSlack = 1e-6;
 
 struct Options {
   long long shots = 50000;
@@ -125,6 +141,69 @@ Vec2 random_spot(Sampler& s, const Scene& sc) {
     }
   }
   return p;
+}
+
+// Object balls (and how they collide), kept only where the scene stays valid. Returns
+// the direction (deg) along which some of them lie from the cue ball.
+double draw_object_balls(Sampler& s, Case* c) {
+  Scene& sc = c->scene;
+  const double r = sc.radius();
+  const double line_deg = s.uniform(0.0, 360.0);
+  const Vec2 line{std::cos(line_deg * kDeg), std::sin(line_deg * kDeg)};
+  const int n = s.chance(0.1) ? 15 : 1 + s.index(8);
+  for (int i = 0; i < n; ++i) {
+    const double turn = s.uniform(0.0, 2.0 * std::numbers::pi);
+    const Vec2 dir{std::cos(turn), std::sin(turn)};
+    const auto touching = [&](Vec2 o) {
+      return Vec2{o.x + 2.0 * r * dir.x, o.y + 2.0 * r * dir.y};
+    };
+    Vec2 p;
+    switch (s.index(6)) {
+      case 0: p = touching(c->cue_ball); break;
+      case 1:
+        if (!sc.balls.empty()) {
+          p = touching(
+              sc.balls[static_cast<size_t>(s.index(static_cast<int>(sc.balls.size())))].position);
+          break;
+        }
+        [[fallthrough]];
+      case 2: {  // on the stroke's line, a few diameters on
+        const double d = 2.0 * r * (1.0 + s.uniform(0.0, 8.0));
+        p = {c->cue_ball.x + d * line.x, c->cue_ball.y + d * line.y};
+        break;
+      }
+      case 3:
+        if (!sc.obstacles.empty()) {
+          p = touching(
+              sc.obstacles[static_cast<size_t>(s.index(static_cast<int>(sc.obstacles.size())))]);
+          break;
+        }
+        [[fallthrough]];
+      case 4:  // by a pocket's jaws
+        if (!sc.pockets.empty()) {
+          const Pocket& k =
+              sc.pockets[static_cast<size_t>(s.index(static_cast<int>(sc.pockets.size())))];
+          p = {k.centre.x + (k.radius + r) * dir.x, k.centre.y + (k.radius + r) * dir.y};
+          break;
+        }
+        [[fallthrough]];
+      default: p = random_spot(s, sc); break;
+    }
+    sc.balls.push_back({"b" + std::to_string(i), p});
+    if (sc.validate() || sc.check_position(c->cue_ball, {"cue_ball"})) sc.balls.pop_back();
+  }
+  BallContact& contact = sc.ball_contact;
+  if (s.chance(0.3)) {
+    contact.model = BallModel::frictional_inelastic;
+    if (s.chance(0.5)) contact.friction = BallFriction::speed_dependent;
+  }
+  if (s.chance(0.3)) {
+    contact.mu_ball = s.chance(0.2) ? 0.0 : s.uniform(0.0, 0.3);
+    contact.restitution = s.chance(0.2) ? 1.0 : s.uniform(0.3, 1.0);
+  }
+  for (int i = 0; i < 200 && sc.validate(); ++i) contact.mu_ball *= 0.7;  // mu_b mu_s < 2/7
+  if (!sc.balls.empty()) c->kind += ", object balls";
+  return line_deg;
 }
 
 Case draw_case(Sampler& s) {
@@ -219,6 +298,9 @@ Case draw_case(Sampler& s) {
       sc.obstacles.pop_back();
   }
 
+  const bool object_balls = s.chance(0.35);
+  const double line_deg = object_balls ? draw_object_balls(s, &c) : 0.0;
+
   // The stroke.
   c.shot.speed =
       s.chance(0.1) ? s.pick(std::array{1e-6, 10.0, 20.0, 1e-3}) : s.log_uniform(1e-6, 10.0);
@@ -235,6 +317,9 @@ Case draw_case(Sampler& s) {
     c.shot.sidespin_k =
         s.chance(0.2) ? s.pick(std::array{-20.0, 20.0, 0.0}) : s.uniform(-20.0, 20.0);
   }
+
+  // Half the strokes on a table with object balls go along the line some lie on.
+  if (!sc.balls.empty() && s.chance(0.5)) c.shot.aim_deg = line_deg;
 
   // Options: the paper's scheme sometimes, small event caps sometimes.
   if (s.chance(0.15)) c.options.impact_method = ImpactMethod::paper;
@@ -254,6 +339,7 @@ Case draw_case(Sampler& s) {
     sc.width = s.uniform(0.2, 1.0);
     sc.pockets.clear();
     sc.obstacles.clear();
+    sc.balls.clear();
     c.cue_ball = {sc.length / 2, sc.width / 2};
     c.shot = {s.uniform(1.0, 10.0), s.uniform(0.0, 360.0), 1.0, 0.0};
     c.options.max_events = 200;
@@ -267,7 +353,7 @@ void spoil(Sampler& s, Case* c) {
   const double inf = std::numeric_limits<double>::infinity();
   Scene& sc = c->scene;
   c->kind = "spoiled";
-  switch (s.index(18)) {
+  switch (s.index(20)) {
     case 0:
       sc.length = 0.0;
       c->bad_field = "length";
@@ -344,6 +430,20 @@ void spoil(Sampler& s, Case* c) {
         c->bad_field = std::isnan(c->shot.topspin_k) ? "shot.topspin_k" : "shot.sidespin_k";
       }
       break;
+    case 17:  // an object ball off the table
+      sc.balls.insert(sc.balls.begin(),
+                      ObjectBall{"spoilt", s.chance(0.5) ? Vec2{nan, 0.5} : Vec2{-1.0, 0.5}});
+      c->bad_field = "balls.spoilt";
+      break;
+    case 18:
+      if (s.chance(0.5)) {
+        sc.ball_contact.restitution = s.chance(0.5) ? 0.0 : 1.5;
+        c->bad_field = "ball_contact.restitution";
+      } else {
+        sc.ball_contact.mu_ball = s.chance(0.5) ? -0.1 : nan;
+        c->bad_field = "ball_contact.mu_ball";
+      }
+      break;
     default:
       c->options.max_events = s.chance(0.5) ? 0 : -5;
       c->bad_field = "max_events";
@@ -375,6 +475,17 @@ std::string reproducer(const Case& c) {
     std::snprintf(buf, sizeof buf, " obstacle (%.17g, %.17g)", o.x, o.y);
     out += buf;
   }
+  if (!sc.balls.empty()) {
+    std::snprintf(buf, sizeof buf, " ball contact {%s, %s, mu_b %.17g, e_b %.17g}",
+                  to_string(sc.ball_contact.model), to_string(sc.ball_contact.friction),
+                  sc.ball_contact.mu_ball, sc.ball_contact.restitution);
+    out += buf;
+  }
+  for (const ObjectBall& b : sc.balls) {
+    std::snprintf(buf, sizeof buf, " ball %s (%.17g, %.17g)", b.name.c_str(), b.position.x,
+                  b.position.y);
+    out += buf;
+  }
   return out;
 }
 
@@ -392,14 +503,19 @@ struct Failures {
 };
 
 bool same_events(const ShotResult& a, const ShotResult& b) {
-  if (a.status != b.status || a.events.size() != b.events.size()) return false;
-  for (size_t i = 0; i < a.events.size(); ++i) {
-    const ShotEvent &x = a.events[i], &y = b.events[i];
-    if (x.type != y.type || std::memcmp(&x.time, &y.time, sizeof x.time) != 0 ||
-        std::memcmp(&x.position, &y.position, sizeof x.position) != 0 ||
-        std::memcmp(&x.velocity, &y.velocity, sizeof x.velocity) != 0 ||
-        std::memcmp(&x.spin, &y.spin, sizeof x.spin) != 0)
-      return false;
+  if (a.status != b.status || a.balls.size() != b.balls.size()) return false;
+  for (size_t k = 0; k < a.balls.size(); ++k) {
+    const std::vector<ShotEvent>&ea = a.balls[k].events, &eb = b.balls[k].events;
+    if (ea.size() != eb.size()) return false;
+    for (size_t i = 0; i < ea.size(); ++i) {
+      const ShotEvent &x = ea[i], &y = eb[i];
+      if (x.type != y.type || x.other != y.other ||
+          std::memcmp(&x.time, &y.time, sizeof x.time) != 0 ||
+          std::memcmp(&x.position, &y.position, sizeof x.position) != 0 ||
+          std::memcmp(&x.velocity, &y.velocity, sizeof x.velocity) != 0 ||
+          std::memcmp(&x.spin, &y.spin, sizeof x.spin) != 0)
+        return false;
+    }
   }
   return true;
 }
@@ -410,8 +526,10 @@ int run(const Options& opt) {
   std::map<std::string, long long> statuses, kinds, failed_impacts;
   long long nonfinite = 0, refused = 0, refused_right = 0, cushion_hits = 0, repeats = 0;
   long long impacts_paper = 0, capped_endless = 0, endless = 0;
-  size_t most_events = 0;
+  long long ball_scenes = 0, ball_contacts = 0, balls_pocketed = 0;
+  size_t most_events = 0, most_balls = 0;
   double max_gain_exact_impact = 0.0, max_gain_paper_impact = 0.0;
+  double max_gain_collision = 0.0, max_contact_gap = 0.0, max_overlap = 0.0;
   double max_gain = 0.0, max_seconds = 0.0, total_seconds = 0.0, max_outside = 0.0;
   std::string slowest;
 
@@ -430,14 +548,20 @@ int run(const Options& opt) {
       slowest = reproducer(c);
     }
     ++statuses[to_string(r.status)];
-    if (r.status == ShotStatus::impact_failed)
-      ++failed_impacts[(r.message.find("pressed") != std::string::npos
-                            ? std::string("pressed against a cushion")
-                            : r.message.substr(r.message.find(':') + 2, 30) + "...") +
-                       " (" + c.kind.substr(0, c.kind.find(',')) +
-                       (std::hypot(c.shot.topspin_k, c.shot.sidespin_k) <= 1.25
-                            ? ", spin within the miscue limit)"
-                            : ", spin beyond it)")];
+    if (r.status == ShotStatus::impact_failed || r.status == ShotStatus::collision_failed) {
+      const bool pressed = r.message.find("pressed") != std::string::npos;
+      const std::string why =
+          r.status == ShotStatus::collision_failed
+              ? (pressed ? "balls pressed together" : "ball-ball collision failed")
+              : (pressed ? "pressed against a cushion"
+                         : r.message.substr(r.message.find(':') + 2, 30) + "...");
+      const std::string key = why + " (" + c.kind.substr(0, c.kind.find(',')) +
+                              (std::hypot(c.shot.topspin_k, c.shot.sidespin_k) <= 1.25
+                                   ? ", spin within the miscue limit)"
+                                   : ", spin beyond it)");
+      if (++failed_impacts[key] == 1 && std::getenv("STRESS_SHOW_FAILED"))
+        std::printf("%s: %s\n", key.c_str(), reproducer(c).c_str());
+    }
 
     if (!test::all_finite(r)) {
       ++nonfinite;
@@ -459,60 +583,123 @@ int run(const Options& opt) {
     }
 
     // The simulation ends, and says how.
-    most_events = std::max(most_events, r.events.size());
+    const bool several = r.balls.size() > 1;
+    size_t all_events = 0;
+    for (const BallOutcome& b : r.balls) all_events += b.events.size();
+    most_events = std::max(most_events, all_events);
+    most_balls = std::max(most_balls, r.balls.size());
     const size_t cap = static_cast<size_t>(c.options.max_events);
-    if (r.events.size() > cap + 1) fail.add("more events than the cap allows", reproducer(c));
-    if (r.status == ShotStatus::event_limit && (r.message.empty() || r.events.size() != cap + 1))
+    // With object balls the cap is checked before each event as with one, but the last
+    // can be a contact (an event for each of its balls) after two balls came to rest.
+    const size_t slack = several ? 4 : 1;
+    if (all_events > cap + slack) fail.add("more events than the cap allows", reproducer(c));
+    if (r.status == ShotStatus::event_limit &&
+        (r.message.empty() || all_events < cap + 1 || all_events > cap + slack))
       fail.add("event_limit without its message or event count", reproducer(c));
     if (c.kind == "endless bouncing") {
       ++endless;
       capped_endless += r.status == ShotStatus::event_limit;
     }
-    if (r.events.empty()) {
-      fail.add("no events", reproducer(c));
+    if (r.events.empty() || r.balls.size() != 1 + c.scene.balls.size()) {
+      fail.add("no events, or not every ball", reproducer(c));
       continue;
     }
-    const EventType last = r.events.back().type;
+    // The status and the balls' last events: at rest (or pocketed, for an object ball)
+    // when the shot ran out; the obstacle contact that ended it.
+    const auto last_of = [](const BallOutcome& b) { return b.events.back().type; };
+    const auto settled = [&](bool cue_pocketed) {
+      if (last_of(r.balls[0]) != (cue_pocketed ? EventType::pocket : EventType::rest)) return false;
+      for (size_t k = 1; k < r.balls.size(); ++k)
+        if (!r.balls[k].events.empty() && last_of(r.balls[k]) != EventType::rest &&
+            last_of(r.balls[k]) != EventType::pocket)
+          return false;
+      return true;
+    };
+    bool obstacle_last = false;
+    for (const BallOutcome& b : r.balls)
+      obstacle_last = obstacle_last || (!b.events.empty() && last_of(b) == EventType::obstacle);
     const bool consistent =
-        (r.status == ShotStatus::rest && last == EventType::rest) ||
-        (r.status == ShotStatus::pocketed && last == EventType::pocket) ||
-        (r.status == ShotStatus::hit_obstacle && last == EventType::obstacle) ||
+        (r.status == ShotStatus::rest && settled(false)) ||
+        (r.status == ShotStatus::pocketed && settled(true)) ||
+        (r.status == ShotStatus::hit_obstacle && obstacle_last) ||
         r.status == ShotStatus::event_limit ||
-        (r.status == ShotStatus::impact_failed && r.message.find("cushion") == 0);
+        (r.status == ShotStatus::impact_failed && r.message.find("cushion") != std::string::npos) ||
+        (r.status == ShotStatus::collision_failed && r.message.find("balls ") == 0);
     if (!consistent)
-      fail.add("status disagrees with the last event",
-               reproducer(c) + " status " + to_string(r.status) + " last " + to_string(last));
-    int hits = 0;
-    for (const ShotEvent& e : r.events) hits += e.type == EventType::cushion;
-    if (hits != r.cushion_hits) fail.add("cushion count disagrees with the events", reproducer(c));
-    cushion_hits += hits;
-    if (c.options.impact_method == ImpactMethod::paper) impacts_paper += hits;
+      fail.add("status disagrees with the last events", reproducer(c) + " status " +
+                                                            to_string(r.status) + " last " +
+                                                            to_string(last_of(r.balls[0])));
+    for (const BallOutcome& b : r.balls) {
+      int hits = 0;
+      for (const ShotEvent& e : b.events) hits += e.type == EventType::cushion;
+      if (hits != b.cushion_hits)
+        fail.add("cushion count disagrees with the events", reproducer(c));
+      cushion_hits += hits;
+      if (c.options.impact_method == ImpactMethod::paper) impacts_paper += hits;
+      if (b.pocketed) {
+        ++balls_pocketed;
+        const Pocket& k = c.scene.pockets.at(static_cast<size_t>(b.pocket));
+        if (std::hypot(b.final_position.x - k.centre.x, b.final_position.y - k.centre.y) >
+            k.radius * (1.0 + 1e-9))
+          fail.add("pocketed outside its pocket", reproducer(c) + " ball " + b.name);
+      }
+    }
+    if (r.cushion_hits != r.balls[0].cushion_hits)
+      fail.add("the cue ball's cushions disagree with its record", reproducer(c));
 
-    // Energy and the table's edges along the whole path.
+    // Energy and the table's edges along every ball's path.
     // The paper's scheme may overshoot the end of an impact by one of its steps, a
     // first-order error that can add energy (the unit tests allow it 1e-3).
-    const test::PathAudit audit = test::audit_path(c.scene, r);
     const bool paper = c.options.impact_method == ImpactMethod::paper;
-    max_gain = std::max(max_gain, audit.max_energy_gain);
-    (paper ? max_gain_paper_impact : max_gain_exact_impact) = std::max(
-        paper ? max_gain_paper_impact : max_gain_exact_impact, audit.max_impact_energy_gain);
-    if (!(audit.max_energy_gain <= kEnergySlack))
-      fail.add("kinetic energy rose", reproducer(c) + " relative gain " +
-                                          std::to_string(1e12 * audit.max_energy_gain) +
-                                          "e-12 at " + audit.where);
-    if (!(audit.max_impact_energy_gain <= (paper ? kPaperEnergySlack : kExactImpactEnergySlack)))
-      fail.add("kinetic energy rose in a cushion impact",
-               reproducer(c) + " relative gain " +
-                   std::to_string(1e12 * audit.max_impact_energy_gain) + "e-12");
     const double scale = std::max(c.scene.length, c.scene.width);
-    max_outside = std::max(max_outside, audit.max_outside / scale);
-    if (!(audit.max_outside <= 1e-12 * scale))
-      fail.add("centre past a cushion line",
-               reproducer(c) + " by " + std::to_string(audit.max_outside));
-    if (!(audit.max_gap <= 1e-9 * scale))
-      fail.add("path and events disagree", reproducer(c) + " gap " + std::to_string(audit.max_gap));
-    if (!audit.times_ordered) fail.add("times go back or do not meet", reproducer(c));
-    if (!audit.segments_matched) fail.add("a path segment starts at no event", reproducer(c));
+    std::vector<test::PathAudit> audits;
+    for (const BallOutcome& b : r.balls) {
+      const test::PathAudit audit = test::audit_path(c.scene, b.events, b.path);
+      const std::string who = several ? " ball " + b.name : "";
+      max_gain = std::max(max_gain, audit.max_energy_gain);
+      (paper ? max_gain_paper_impact : max_gain_exact_impact) = std::max(
+          paper ? max_gain_paper_impact : max_gain_exact_impact, audit.max_impact_energy_gain);
+      if (!(audit.max_energy_gain <= kEnergySlack))
+        fail.add("kinetic energy rose", reproducer(c) + who + " relative gain " +
+                                            std::to_string(1e12 * audit.max_energy_gain) +
+                                            "e-12 at " + audit.where);
+      if (!(audit.max_impact_energy_gain <= (paper ? kPaperEnergySlack : kExactImpactEnergySlack)))
+        fail.add("kinetic energy rose in a cushion impact",
+                 reproducer(c) + who + " relative gain " +
+                     std::to_string(1e12 * audit.max_impact_energy_gain) + "e-12");
+      max_outside = std::max(max_outside, audit.max_outside / scale);
+      if (!(audit.max_outside <= 1e-12 * scale))
+        fail.add("centre past a cushion line",
+                 reproducer(c) + who + " by " + std::to_string(audit.max_outside));
+      if (!(audit.max_gap <= 1e-9 * scale))
+        fail.add("path and events disagree",
+                 reproducer(c) + who + " gap " + std::to_string(audit.max_gap));
+      if (!audit.times_ordered) fail.add("times go back or do not meet", reproducer(c) + who);
+      if (!audit.segments_matched)
+        fail.add("a path segment starts at no event", reproducer(c) + who);
+      audits.push_back(audit);
+    }
+
+    // Ball contacts: 2R apart, and the two balls' energy does not rise across one; no
+    // two balls overlap anywhere.
+    if (several) {
+      ++ball_scenes;
+      const test::ContactAudit contacts = test::audit_contacts(c.scene, r, audits);
+      ball_contacts += contacts.contacts;
+      max_contact_gap = std::max(max_contact_gap, contacts.max_gap);
+      max_gain_collision = std::max(max_gain_collision, contacts.max_energy_gain);
+      max_overlap = std::max(max_overlap, contacts.max_overlap);
+      if (!contacts.paired) fail.add("a contact logged for one ball only", reproducer(c));
+      if (!(contacts.max_gap <= kContactSlack))
+        fail.add("balls in contact not 2R apart",
+                 reproducer(c) + " by " + std::to_string(contacts.max_gap) + " of 2R");
+      if (!(contacts.max_energy_gain <= kCollisionEnergySlack))
+        fail.add("kinetic energy rose in a ball-ball collision",
+                 reproducer(c) + " relative gain " + std::to_string(contacts.max_energy_gain));
+      if (!(contacts.max_overlap <= kContactSlack))
+        fail.add("two balls overlap",
+                 reproducer(c) + " by " + std::to_string(contacts.max_overlap) + " of 2R");
+    }
 
     if (i % 1000 == 0) {
       ++repeats;
@@ -524,7 +711,7 @@ int run(const Options& opt) {
   std::printf("stress_shots: seed %" PRIu64 ", %lld shots\n", opt.seed, opt.shots);
   std::printf("  statuses:");
   for (const auto& [k, n] : statuses) std::printf(" %s %lld;", k.c_str(), n);
-  std::printf("\n  impact_failed:");
+  std::printf("\n  impact_failed and collision_failed:");
   for (const auto& [k, n] : failed_impacts) std::printf("\n    %s: %lld", k.c_str(), n);
   std::printf("\n  scenes:");
   for (const auto& [k, n] : kinds) std::printf(" %s %lld;", k.c_str(), n);
@@ -544,12 +731,20 @@ int run(const Options& opt) {
       max_gain_exact_impact, kExactImpactEnergySlack, max_gain_paper_impact, kPaperEnergySlack,
       fail.count["kinetic energy rose in a cushion impact"]);
   std::printf("  farthest past a cushion line: %.3e of the table size\n", max_outside);
+  std::printf(
+      "  object balls: %lld scenes (up to %zu balls), %lld ball contacts, %lld balls pocketed;"
+      " contacts off 2R by at most %.3e of 2R; deepest overlap of two balls anywhere %.3e "
+      "of 2R inside; energy across collisions: largest relative rise %.3e (allowed %.0e)\n",
+      ball_scenes, most_balls, ball_contacts, balls_pocketed, max_contact_gap,
+      max_overlap, max_gain_collision, kCollisionEnergySlack);
   std::printf("  time per shot: mean %.2f us, max %.1f us\n",
               1e6 * total_seconds / static_cast<double>(opt.shots), 1e6 * max_seconds);
   std::printf("    slowest: %s\n", slowest.c_str());
   std::printf("  determinism: %lld repeats, %lld differed\n", repeats,
               fail.count["same input, different result"]);
   std::printf("  failed checks: %lld\n", fail.total());
+  for (const auto& [what, n] : fail.count)
+    if (n > 0) std::printf("    %s: %lld\n", what.c_str(), n);
   for (const std::string& e : fail.examples) std::printf("    %s\n", e.c_str());
 
   if (!opt.json.empty()) {
@@ -560,6 +755,8 @@ int run(const Options& opt) {
         << ", \"max_energy_gain\": " << max_gain << ", \"cushion_impacts\": " << cushion_hits
         << ", \"event_cap_endless\": " << capped_endless << ", \"endless\": " << endless
         << ", \"refused\": " << refused << ", \"refused_by_name\": " << refused_right
+        << ", \"ball_scenes\": " << ball_scenes << ", \"ball_contacts\": " << ball_contacts
+        << ", \"max_collision_energy_gain\": " << max_gain_collision
         << ", \"max_us\": " << 1e6 * max_seconds << ", \"failed_checks\": " << fail.total()
         << ", \"statuses\": ";
     test::write_counts_json(out, statuses);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "cueplan/physics/cushion_impact.hpp"
 #include "cueplan/physics/impact_table.hpp"
@@ -57,18 +58,29 @@ inline double kinetic_energy_of(const Scene& s, Vec2 v, Vec3 w) {
 
 inline bool finite2(Vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
-// Every number a shot result reports is finite.
+// Every number a shot result reports is finite, for every ball.
 inline bool all_finite(const ShotResult& r) {
   if (!finite2(r.final_position) || !std::isfinite(r.duration) ||
       !std::isfinite(r.max_cushion_normal_speed))
     return false;
-  for (const ShotEvent& e : r.events)
-    if (!std::isfinite(e.time) || !finite2(e.position) || !finite2(e.velocity) ||
-        !is_finite(e.spin) || !std::isfinite(e.normal_speed))
-      return false;
-  for (const PathSegment& s : r.path)
-    if (!std::isfinite(s.t0) || !std::isfinite(s.t1) || !finite2(s.p0) || !finite2(s.v0) ||
-        !finite2(s.accel))
+  const auto finite_events = [](const std::vector<ShotEvent>& events) {
+    for (const ShotEvent& e : events)
+      if (!std::isfinite(e.time) || !finite2(e.position) || !finite2(e.velocity) ||
+          !is_finite(e.spin) || !std::isfinite(e.normal_speed) || !std::isfinite(e.impulse))
+        return false;
+    return true;
+  };
+  const auto finite_path = [](const std::vector<PathSegment>& path) {
+    for (const PathSegment& s : path)
+      if (!std::isfinite(s.t0) || !std::isfinite(s.t1) || !finite2(s.p0) || !finite2(s.v0) ||
+          !finite2(s.accel))
+        return false;
+    return true;
+  };
+  if (!finite_events(r.events) || !finite_path(r.path)) return false;
+  for (const BallOutcome& b : r.balls)
+    if (!finite2(b.final_position) || !std::isfinite(b.max_cushion_normal_speed) ||
+        !finite_events(b.events) || !finite_path(b.path))
       return false;
   return true;
 }
@@ -84,13 +96,26 @@ struct PathAudit {
   bool times_ordered = true;     // event and segment times never go back, and meet
   bool segments_matched = true;  // every segment starts at an event
   std::string where;             // the event or segment of max_energy_gain
+  // Each contact with another ball: the ball's kinetic energy just before (the end of
+  // the segment or the state of the event before it; 0 when it lay untouched) and just
+  // after, for the caller to add up over both balls.
+  struct Contact {
+    double time = 0.0;
+    int other = -1;
+    double before = 0.0, after = 0.0;
+  };
+  std::vector<Contact> contacts;
 };
 
 // Walks the events in order, and inside every path segment rebuilds the state at
 // `samples` interior times from the segment's start event with the cloth laws of
 // PHYSICS.md: while sliding dw/dt = (5 / 2R) z x (-a) (a = mu_s g along -u), while
 // rolling w = (-v_y, v_x) / R, and w_z falls at 5 mu_sp g / (2R) toward zero.
-inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4) {
+//
+// For one ball's events and path (ShotResult::balls[k]): its kinetic energy may rise only
+// where another ball strikes it (ball_contact events, not counted).
+inline PathAudit audit_path(const Scene& s, const std::vector<ShotEvent>& events,
+                            const std::vector<PathSegment>& path, int samples = 4) {
   PathAudit audit;
   const double radius = s.radius();
   const double spin_decel = 2.5 * s.cloth.mu_spin * s.cloth.gravity / radius;
@@ -99,9 +124,22 @@ inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4
     return std::max({off - p.x, p.x - (s.length - off), off - p.y, p.y - (s.width - off), 0.0});
   };
   double last = INFINITY;
-  auto visit = [&](double energy, const std::string& where, bool impact) {
+  // Times are seconds since the strike, so a segment's length, rebuilt as t1 - t0, is
+  // known to an ulp of t1: the state at its end to how fast the energy falls times that.
+  // On the long segments of a shot this is far below rounding; on the nanosecond ones of
+  // balls pressed together it is not.
+  double last_allowance = 0.0;
+  auto visit = [&](double energy, const std::string& where, bool impact, bool contact = false) {
     double gain = 0.0;
-    if (std::isfinite(last) && energy > last) gain = last > 0.0 ? (energy - last) / last : INFINITY;
+    if (std::isfinite(last) && energy > last + last_allowance)
+      gain = last > 0.0 ? (energy - last - last_allowance) / last : INFINITY;
+    last_allowance = 0.0;
+    if (contact) {
+      audit.contacts.back().before = std::isfinite(last) ? last : 0.0;
+      audit.contacts.back().after = energy;
+      last = energy;
+      return;
+    }
     double& worst = impact ? audit.max_impact_energy_gain : audit.max_energy_gain;
     if (gain > worst) {
       worst = gain;
@@ -118,27 +156,28 @@ inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4
   };
   size_t next_event = 0;
   auto take_event = [&] {
-    const ShotEvent& e = r.events[next_event];
-    if (next_event > 0 && e.time < r.events[next_event - 1].time) audit.times_ordered = false;
+    const ShotEvent& e = events[next_event];
+    if (next_event > 0 && e.time < events[next_event - 1].time) audit.times_ordered = false;
     audit.max_outside = std::max(audit.max_outside, outside(e.position));
+    if (e.type == EventType::ball_contact) audit.contacts.push_back({e.time, e.other});
     visit(kinetic_energy_of(s, e.velocity, e.spin),
           std::string("event ") + std::to_string(next_event) + " (" + to_string(e.type) + ")",
-          e.type == EventType::cushion);
+          e.type == EventType::cushion, e.type == EventType::ball_contact);
     ++next_event;
   };
-  for (size_t i = 0; i < r.path.size(); ++i) {
-    const PathSegment& seg = r.path[i];
+  for (size_t i = 0; i < path.size(); ++i) {
+    const PathSegment& seg = path[i];
     if (seg.t1 < seg.t0) audit.times_ordered = false;
-    while (next_event < r.events.size() && !starts(r.events[next_event], seg)) take_event();
+    while (next_event < events.size() && !starts(events[next_event], seg)) take_event();
     // (A segment of zero length by rounding starts where the next one does.)
-    while (next_event + 1 < r.events.size() && starts(r.events[next_event + 1], seg) &&
-           !(i + 1 < r.path.size() && starts(r.events[next_event + 1], r.path[i + 1])))
+    while (next_event + 1 < events.size() && starts(events[next_event + 1], seg) &&
+           !(i + 1 < path.size() && starts(events[next_event + 1], path[i + 1])))
       take_event();
-    if (next_event == r.events.size()) {
+    if (next_event == events.size()) {
       audit.segments_matched = false;
       break;
     }
-    const ShotEvent& start = r.events[next_event];
+    const ShotEvent& start = events[next_event];
     take_event();
     const Vec3 w0 = start.spin;
     for (int k = 1; k <= samples + 1; ++k) {
@@ -159,17 +198,122 @@ inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4
       // The last sample is the segment's end, just before the next event.
       visit(kinetic_energy_of(s, v, w),
             "segment " + std::to_string(i) + " at t = " + std::to_string(seg.t0 + dt), false);
+      if (k == samples + 1) {
+        // dE/dt bounded by M |v| |a| + I |w| (5 / 2R) |a| + I |w_z| spin_decel.
+        const double m = s.ball_and_cushion.mass, inertia = 0.4 * m * radius * radius;
+        const double a = std::hypot(seg.accel.x, seg.accel.y);
+        const double rate = m * std::hypot(v.x, v.y) * a +
+                            inertia * std::hypot(w.x, w.y) * 2.5 / radius * a +
+                            inertia * std::abs(w.z) * spin_decel;
+        last_allowance = rate * 4.0 * (std::nextafter(seg.t1, INFINITY) - seg.t1);
+      }
     }
     // The segment ends where the next event happens.
-    if (next_event < r.events.size()) {
+    if (next_event < events.size()) {
       const Vec2 end = seg.at(seg.t1);
-      const Vec2 at = r.events[next_event].position;
+      const Vec2 at = events[next_event].position;
       audit.max_gap = std::max(audit.max_gap, std::hypot(end.x - at.x, end.y - at.y));
-      if (r.events[next_event].time != seg.t1) audit.times_ordered = false;
+      if (events[next_event].time != seg.t1) audit.times_ordered = false;
     }
   }
-  while (next_event < r.events.size()) take_event();
+  while (next_event < events.size()) take_event();
   return audit;
+}
+
+// Where a ball is at time t, from its recorded path: on the segment that covers t,
+// else where its last event before t left it, else where it started.
+inline Vec2 position_at(const BallOutcome& b, double t) {
+  for (const PathSegment& seg : b.path)
+    if (seg.t0 <= t && t <= seg.t1) return seg.at(t);
+  Vec2 p = b.start;
+  for (const ShotEvent& e : b.events)
+    if (e.time <= t) p = e.position;
+  return p;
+}
+
+// What walking every ball of a shot and the contacts between them found.
+struct ContactAudit {
+  int contacts = 0;
+  bool paired = true;            // every contact logged for both its balls, at one time
+  double max_gap = 0.0;          // largest |distance - 2R| at a contact, in units of 2R
+  double max_energy_gain = 0.0;  // largest relative rise of two balls' kinetic energy
+                                 // across their contact
+  double max_overlap = 0.0;      // deepest two balls (or a ball and an obstacle) overlap,
+                                 // in units of 2R, at every event and half-way along
+                                 // every segment up to the shot's end
+};
+
+// Each contact of balls i < j from both balls' events and audits (audits[k] =
+// audit_path of ball k): the n-th contact of i with j is the n-th of j with i.
+inline ContactAudit audit_contacts(const Scene& s, const ShotResult& r,
+                                   const std::vector<PathAudit>& audits) {
+  ContactAudit out;
+  const double d2 = 2.0 * s.radius();
+  for (size_t k = 0; k < r.balls.size(); ++k) {
+    size_t seen = 0;
+    std::vector<int> with(r.balls.size(), 0);  // contacts with each other ball so far
+    for (const ShotEvent& e : r.balls[k].events) {
+      if (e.type != EventType::ball_contact) continue;
+      const PathAudit::Contact& mine = audits[k].contacts.at(seen++);
+      const int nth = with.at(static_cast<size_t>(e.other))++;
+      if (e.other < static_cast<int>(k)) continue;  // counted from the lower index
+      ++out.contacts;
+      const size_t j = static_cast<size_t>(e.other);
+      const ShotEvent* theirs = nullptr;
+      const PathAudit::Contact* their_energy = nullptr;
+      size_t n = 0;
+      int theirs_nth = 0;
+      for (const ShotEvent& f : r.balls[j].events) {
+        if (f.type != EventType::ball_contact) continue;
+        if (f.other == static_cast<int>(k) && theirs_nth++ == nth && f.time == e.time) {
+          theirs = &f;
+          their_energy = &audits[j].contacts.at(n);
+        }
+        ++n;
+      }
+      if (theirs == nullptr) {
+        out.paired = false;
+        continue;
+      }
+      const double gap = std::abs(
+          std::hypot(e.position.x - theirs->position.x, e.position.y - theirs->position.y) - d2);
+      out.max_gap = std::max(out.max_gap, gap / d2);
+      const double before = mine.before + their_energy->before;
+      const double after = mine.after + their_energy->after;
+      if (before > 0.0) out.max_energy_gain = std::max(out.max_energy_gain, (after - before) / before);
+    }
+  }
+  // Overlaps, where every ball is at each event time and half-way along each segment.
+  std::vector<double> times;
+  double end = 0.0;
+  for (const BallOutcome& b : r.balls) {
+    for (const ShotEvent& e : b.events) times.push_back(e.time), end = std::max(end, e.time);
+    for (const PathSegment& seg : b.path) times.push_back(0.5 * (seg.t0 + seg.t1));
+  }
+  const auto on_table = [](const BallOutcome& b, double t) {
+    return !b.pocketed || b.events.back().time > t;
+  };
+  std::vector<Vec2> at(r.balls.size());
+  for (const double t : times) {
+    if (t > end) continue;
+    for (size_t k = 0; k < r.balls.size(); ++k) at[k] = position_at(r.balls[k], t);
+    for (size_t i = 0; i < r.balls.size(); ++i) {
+      if (!on_table(r.balls[i], t)) continue;
+      for (size_t j = i + 1; j < r.balls.size(); ++j)
+        if (on_table(r.balls[j], t))
+          out.max_overlap = std::max(
+              out.max_overlap, (d2 - std::hypot(at[i].x - at[j].x, at[i].y - at[j].y)) / d2);
+      for (const Vec2& o : s.obstacles)
+        out.max_overlap =
+            std::max(out.max_overlap, (d2 - std::hypot(at[i].x - o.x, at[i].y - o.y)) / d2);
+    }
+  }
+  return out;
+}
+
+// The cue ball's (ShotResult::events and ::path).
+inline PathAudit audit_path(const Scene& s, const ShotResult& r, int samples = 4) {
+  return audit_path(s, r.events, r.path, samples);
 }
 
 }  // namespace cueplan::physics::test

@@ -1,11 +1,19 @@
-// From a cue strike to the cue ball at rest, event by event (shared/PHYSICS.md).
+// From a cue strike to every ball at rest, event by event (shared/PHYSICS.md, "Ball on
+// the cloth" and "Several balls on the table").
 //
-// Between events the ball slides or rolls on the cloth with constant acceleration,
-// so its position is a quadratic in time and every event - slide to roll, sidespin
-// stop, stop, cushion contact, pocket capture, contact with an obstacle ball - is a
-// root of a polynomial, solved rather than stepped to. At a cushion contact the
-// state is turned into that cushion's frame, resolved by the impact library and
-// turned back.
+// Between events each ball slides or rolls on the cloth with constant acceleration, so
+// its position is a quadratic in time and every event - slide to roll, sidespin stop,
+// stop, cushion contact, pocket capture, contact with an obstacle ball, contact with
+// another ball - is a root of a polynomial, solved rather than stepped to. At a cushion
+// contact the state is turned into that cushion's frame, resolved by the impact library
+// and turned back; a contact of two balls is resolved by the ball-ball collision library
+// (ball_collision.hpp) along their line of centres.
+//
+// The object balls lie at rest until struck. An object ball that drops into a pocket
+// leaves the table and the shot goes on; so does the cue ball's: a pocketed cue ball
+// ends its own motion, not the simulation of the others, which move on to rest (the
+// result reports the cue ball pocketed). A contact of any ball with an obstacle ends
+// the shot.
 //
 // Pure functions of their arguments: no globals, safe from many threads.
 #pragma once
@@ -14,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cueplan/physics/ball_collision.hpp"
 #include "cueplan/physics/cushion_impact.hpp"
 #include "cueplan/physics/validation.hpp"
 
@@ -31,7 +40,7 @@ struct Vec2 {
 struct ClothParams {
   double mu_slide = 0.212;  // ball-cloth sliding friction
   double mu_roll = 0.01;    // rolling resistance
-  double mu_spin = 0.044;   // spinning (sidespin) friction
+  double mu_spin = 0.0117;  // spinning (sidespin) friction (PHYSICS.md: 10.9 rad/s^2 for snooker)
   double gravity = 9.81;    // m/s^2
 };
 
@@ -44,26 +53,56 @@ struct Pocket {
   double radius = 0.0;  // m, a ball whose centre enters this circle is pocketed
 };
 
-// The table and everything on it that stays fixed during a shot.
+// An object ball, at rest where the shot starts; the same radius and mass as the cue ball.
+struct ObjectBall {
+  std::string name;  // unique on the table, not empty, not "cue" (the cue ball's name)
+  Vec2 position;     // m, table frame
+};
+
+// The name ShotResult::balls gives the cue ball.
+inline constexpr const char* kCueBallName = "cue";
+
+// How two balls collide (PHYSICS.md, "Ball-ball collision"): the scene's part of
+// BallBallParams. Mass, radius and the cloth friction are the scene's own
+// (ball_and_cushion.mass, .radius, cloth.mu_slide), so they cannot disagree.
+struct BallContact {
+  double mu_ball = 0.05;      // ball-ball sliding friction mu_b
+  double restitution = 0.89;  // e_b, in (0, 1]
+  BallModel model = BallModel::mathavan_2014;
+  BallFriction friction = BallFriction::constant;  // for frictional_inelastic
+};
+
+// The table and everything on it when the shot starts.
 struct Scene {
   double length = 3.569;  // m between the cushion noses x = 0 and x = length
   double width = 1.778;   // m between y = 0 and y = width
   CushionParams ball_and_cushion;  // ball mass and radius, cushion height, mu_w, mu_s, e
   ClothParams cloth;
   std::vector<Pocket> pockets;
-  std::vector<Vec2> obstacles;  // centres of other balls at rest (same radius)
+  std::vector<Vec2> obstacles;    // balls nothing may touch (same radius): a contact ends the shot
+  std::vector<ObjectBall> balls;  // object balls the shot may strike
+  BallContact ball_contact;
 
   double radius() const { return ball_and_cushion.radius; }
   // Distance from a cushion nose line at which the ball's centre meets it: R cos(theta).
   double contact_offset() const;
+  // The collision parameters of two of this scene's balls.
+  BallBallParams ball_ball_params() const;
   // Empty when usable; otherwise the first broken rule, fields named as the members
   // here: {"length"}, {"cloth", "mu_roll"}, {"ball_and_cushion", "mass"},
-  // {"pockets", 2, "radius"}, {"obstacles", 1}.
+  // {"pockets", 2, "radius"}, {"obstacles", 1}, {"balls", "red"} (an object ball by its
+  // name; {"balls", 2, "name"} for a bad name), {"ball_contact", "mu_ball"}. The
+  // collision parameters' rules (BallBallParams::validate) come under "ball_contact",
+  // except those on the mass, radius and cloth friction, which name the scene's fields.
   Validation validate() const;
-  // Where a ball may rest: inside the cushions, not in a pocket or an obstacle.
-  // Empty when the position is fine; otherwise why not, the field named `what` (a
-  // pocket or obstacle it meets is the error's `other`, named as in validate()).
+  // Where a ball may rest: inside the cushions, not in a pocket, not on an obstacle or an
+  // object ball (touching is fine). Empty when the position is fine; otherwise why not,
+  // the field named `what` (a pocket or ball it meets is the error's `other`, named as in
+  // validate()).
   Validation check_position(Vec2 position, const FieldPath& what) const;
+  // Where a ball may come to rest after a shot: the same, but the object balls, which
+  // the shot may have moved, do not count.
+  Validation check_rest_position(Vec2 position, const FieldPath& what) const;
 };
 
 // Snooker table with the six standard pockets (capture radius kDefaultPocketRadius), in
@@ -84,10 +123,13 @@ class CompiledScene {
   // The broken rule when the scene is unusable (Scene::validate()'s); empty otherwise.
   const Validation& error() const { return error_; }
   bool ok() const { return !error_.has_value(); }
+  // scene().ball_ball_params(), built once.
+  const BallBallParams& ball_ball_params() const { return ball_ball_; }
 
  private:
   Scene scene_;
   Validation error_;
+  BallBallParams ball_ball_;
 };
 
 // A centred-impulse cue whose tip is d from the ball's centre gives spin k = (5/2) d / R
@@ -109,19 +151,21 @@ struct Shot {
 };
 
 enum class EventType {
-  strike,         // t = 0
+  strike,         // t = 0, the cue ball
   slide_to_roll,  // the contact point stops slipping on the cloth
   spin_stop,      // sidespin decays to zero
   cushion,        // cushion contact resolved by the impact model
-  pocket,         // the centre entered a pocket's capture circle
-  obstacle,       // contact with an obstacle ball
+  pocket,         // the centre entered a pocket's capture circle: the ball leaves the table
+  obstacle,       // contact with an obstacle ball: the shot ends
   rest,           // the ball stops
+  ball_contact,   // contact with another ball, resolved by the ball-ball collision model
 };
 const char* to_string(EventType type);
 
 enum class Motion { sliding, rolling, resting };
 const char* to_string(Motion motion);
 
+// One event of one ball; position, velocity and spin are that ball's.
 struct ShotEvent {
   EventType type = EventType::strike;
   double time = 0.0;  // s since the strike
@@ -130,7 +174,11 @@ struct ShotEvent {
   Vec3 spin;          // rad/s just after the event
   int cushion = -1;   // 0: y = 0, 1: x = length, 2: y = width, 3: x = 0 (cushion events)
   int index = -1;     // pocket or obstacle index (pocket and obstacle events)
-  double normal_speed = 0.0;  // m/s into the cushion (cushion events)
+  double normal_speed = 0.0;  // m/s into the cushion (cushion events); along the line
+                              // of centres, how fast the balls approached (ball contacts)
+  int ball = 0;       // whose event: index into ShotResult::balls (0: the cue ball)
+  int other = -1;     // ball contacts: the other ball, index into ShotResult::balls
+  double impulse = 0.0;  // N s, ball contacts: the collision's normal impulse
 };
 
 // One piece of path between events: p(t) = p0 + v0 (t - t0) + a (t - t0)^2 / 2.
@@ -141,26 +189,35 @@ struct PathSegment {
   Vec2 at(double t) const;
 };
 
+// How the shot ended, said of the cue ball (the object balls' outcomes are in
+// ShotResult::balls).
 enum class ShotStatus {
-  rest,            // came to rest on the table
-  pocketed,        // entered a pocket
-  hit_obstacle,    // touched an obstacle ball
+  rest,            // the cue ball came to rest on the table (and so did every other ball)
+  pocketed,        // the cue ball entered a pocket (the others moved on to rest)
+  hit_obstacle,    // a ball (the cue ball or an object ball) touched an obstacle ball
   invalid_input,   // nothing simulated; message names the field
   event_limit,     // more events than SimulationOptions::max_events
   impact_failed,   // the impact model could not resolve a cushion contact, or friction
-                   // presses the ball into a cushion it touches with no approach speed
+                   // presses a ball into a cushion it touches with no approach speed
                    // (sliding along a cushion is not modelled)
+  collision_failed,  // the ball-ball collision model could not resolve a contact
 };
 const char* to_string(ShotStatus status);
 
 struct SimulationOptions {
   // Impact method for cushion contacts. With a table, the table answers where its
-  // measured error meets `impact_accuracy`, and the exact method elsewhere.
+  // measured error meets `impact_accuracy`, and the exact method elsewhere. Ball-ball
+  // contacts of the mathavan_2014 model are always resolved by its exact method, at a
+  // tolerance that meets `impact_accuracy` as well.
   ImpactMethod impact_method = ImpactMethod::exact;
   double impact_accuracy = 1e-9;        // relative error wanted from each impact
   const ImpactTable* table = nullptr;   // used when impact_method is table
-  int max_events = 200;                 // bound on events (cushions, stops, ...)
-  bool record_path = true;              // fill ShotResult::path
+  // Bound on the events of all balls together: checked before each event, so a shot
+  // stopped by it (event_limit) holds max_events + 1 events, or up to 4 more with
+  // object balls (a contact logs one for each ball, balls stopping at one instant one
+  // each).
+  int max_events = 200;
+  bool record_path = true;              // fill the path of ShotResult and of each ball
 };
 
 // The impact method simulate() uses for cushion contacts with these options: the
@@ -168,25 +225,47 @@ struct SimulationOptions {
 // extrapolation when asked for, else exact (at a tolerance that meets the accuracy).
 ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options);
 
+// What became of one ball.
+struct BallOutcome {
+  std::string name;     // kCueBallName for the cue ball, else its ObjectBall::name
+  Vec2 start;           // m, where it lay when the shot started
+  Vec2 final_position;  // m, at rest, where it entered a pocket, or where the shot ended
+  bool pocketed = false;
+  int pocket = -1;      // when pocketed: index into Scene::pockets
+  int cushion_hits = 0;
+  double max_cushion_normal_speed = 0.0;  // m/s
+  std::vector<ShotEvent> events;  // its own, in time order (none for a ball never struck)
+  std::vector<PathSegment> path;  // its path, when record_path
+};
+
+// The outcome of a stroke. The top-level fields describe the cue ball (as they did
+// before there were object balls); `balls` describes every ball, the cue ball first.
 struct ShotResult {
   ShotStatus status = ShotStatus::invalid_input;
   std::string message;
   // invalid_input: the broken rule; fields named as Scene's members (see
   // Scene::validate), {"cue_ball"}, {"shot", "speed"} and the like, {"max_events"}.
   std::optional<ValidationError> error;
-  Vec2 final_position;
-  double duration = 0.0;  // s from the strike to rest (or to the end event)
-  int cushion_hits = 0;
-  double max_cushion_normal_speed = 0.0;  // m/s; above the rigid limit the model is flagged
-  bool rigid_limit_exceeded = false;
+  Vec2 final_position;    // the cue ball's
+  double duration = 0.0;  // s from the strike to the cue ball's rest (or its end event)
+  int cushion_hits = 0;   // the cue ball's
+  double max_cushion_normal_speed = 0.0;  // m/s, the cue ball's; above the rigid limit the
+                                          // model is flagged
+  bool rigid_limit_exceeded = false;      // the cue ball's cushions
   ImpactMethod impact_method = ImpactMethod::exact;  // chosen_impact_method()
-  int table_impacts = 0;  // cushion contacts the table answered (the rest fell back)
-  std::vector<ShotEvent> events;
-  std::vector<PathSegment> path;  // when record_path
+  int table_impacts = 0;  // cushion contacts (of every ball) the table answered (the rest
+                          // fell back)
+  std::vector<ShotEvent> events;  // the cue ball's (balls[0].events)
+  std::vector<PathSegment> path;  // the cue ball's, when record_path (balls[0].path)
+  // Every ball: balls[0] is the cue ball (named kCueBallName), balls[k] is
+  // Scene::balls[k - 1]. Empty only with invalid_input.
+  std::vector<BallOutcome> balls;
+  int first_contact = -1;  // the first ball the cue ball touched (index into balls); -1: none
 };
 
 // Simulates one stroke of the cue ball from `cue_ball` on `scene`, which was checked
-// when it was compiled (an unusable one gives invalid_input with its error).
+// when it was compiled (an unusable one gives invalid_input with its error), until
+// every ball rests or leaves the table, or a ball touches an obstacle.
 ShotResult simulate(const CompiledScene& scene, Vec2 cue_ball, const Shot& shot,
                     const SimulationOptions& options = {});
 // The same for a scene checked on this call, for callers that simulate it once.

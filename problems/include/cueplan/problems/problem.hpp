@@ -45,12 +45,19 @@ struct Limits {
   int cushions_max = 3;    // >= cushions_min
 };
 
+// An object ball into a pocket: what a pot-and-position shot is to do.
+struct Pot {
+  std::string ball;  // an object ball's name (Scene::balls)
+  int pocket = -1;   // index into Scene::pockets; the file names it (kPocketNames)
+};
+
 struct Problem {
   std::string name;    // the file's `name`, or the stem of its file name
   std::string source;  // file path, or the source name given to parse_problem
-  physics::Scene scene;
+  physics::Scene scene;    // with the object balls (`balls`) and obstacles
   physics::Vec2 cue_ball;  // m, table frame; checked with Scene::check_position
-  physics::Vec2 target;    // m, where the cue ball should come to rest; checked likewise
+  physics::Vec2 target;    // m, where the cue ball should come to rest; checked with
+                           // Scene::check_rest_position (object balls may move away)
   double tolerance = kDefaultTolerance;  // m, radius of the landing zone; > 0
   Limits limits;
   // For a route of several strokes (planner/route.hpp, `cueplan route`): the most
@@ -58,18 +65,25 @@ struct Problem {
   // Empty when the file leaves them out; commands then use their own defaults.
   std::optional<int> max_strokes;
   std::optional<double> time_budget_s;
+  // For pot-and-position planning (the planners ignore them for now): the pot the shot
+  // is to make, and the object ball the cue ball must strike first.
+  std::optional<Pot> pot;
+  std::optional<std::string> first_contact;
 };
 
 // Empty when the problem can be planned; otherwise the first broken rule, fields named
 // as the members of Problem: {"scene", "length"}, {"scene", "cloth", "mu_roll"},
-// {"cue_ball"}, {"limits", "speed_max"}, ... The one check of a problem: the loader runs
-// it on every file, the planners on every problem they are given.
+// {"scene", "balls", "red"}, {"cue_ball"}, {"limits", "speed_max"}, {"pot", "ball"},
+// {"first_contact"}, ... The one check of a problem: the loader runs it on every file,
+// the planners on every problem they are given.
 physics::Validation validate(const Problem& problem);
 
 // A field of Problem (a path as validate() names it) as the problem file names it:
 // {"scene", "length"} -> "table.length", {"scene", "ball_and_cushion", "mu_table"} ->
-// "physics.mu_slide", {"limits", "speed_min"} -> "limits.speed[0]", a standard pocket
-// {"scene", "pockets", 0} -> "the bottom_left pocket".
+// "physics.mu_slide", {"scene", "ball_contact", "restitution"} ->
+// "physics.ball_restitution", {"scene", "balls", "red"} -> "balls.red",
+// {"limits", "speed_min"} -> "limits.speed[0]", a standard pocket {"scene", "pockets", 0}
+// -> "the bottom_left pocket".
 std::string file_field(const physics::FieldPath& path);
 // The error in the file's words: "FIELD RULE, got VALUE".
 std::string file_message(const physics::ValidationError& error);
@@ -118,5 +132,13 @@ double miss_distance(const Problem& problem, const physics::ShotResult& result);
 // True when the outcome solves the problem: at rest within `tolerance` of the target
 // after a number of cushion contacts within [cushions_min, cushions_max].
 bool reaches_target(const Problem& problem, const physics::ShotResult& result);
+
+// True when the outcome makes the problem's pot (the ball in that pocket); false when
+// the problem has none.
+bool makes_pot(const Problem& problem, const physics::ShotResult& result);
+
+// The pocket's name in problem files (kPocketNames) when the table has the standard
+// pockets, else "pocket N".
+std::string pocket_name(const physics::Scene& scene, int pocket);
 
 }  // namespace cueplan::problems

@@ -1,0 +1,252 @@
+// The scene, the stroke and their checks; names of the simulator's enums.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "ball_motion.hpp"
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/physics/shot.hpp"
+
+namespace cueplan::physics {
+
+using detail::norm;
+using detail::operator-;
+
+double Scene::contact_offset() const { return radius() * ball_and_cushion.cos_theta(); }
+
+BallBallParams Scene::ball_ball_params() const {
+  BallBallParams p;
+  p.mass = ball_and_cushion.mass;
+  p.radius = ball_and_cushion.radius;
+  p.mu_ball = ball_contact.mu_ball;
+  p.restitution = ball_contact.restitution;
+  p.mu_table = cloth.mu_slide;
+  p.model = ball_contact.model;
+  p.friction = ball_contact.friction;
+  return p;
+}
+
+Vec2 PathSegment::at(double t) const {
+  const double dt = t - t0;
+  return {p0.x + v0.x * dt + 0.5 * accel.x * dt * dt, p0.y + v0.y * dt + 0.5 * accel.y * dt * dt};
+}
+
+namespace {
+
+// Two balls closer than 2R (a hair of rounding allowed: touching is fine).
+bool overlap(Vec2 a, Vec2 b, double radius) { return norm(a - b) < 2.0 * radius * (1.0 - 1e-9); }
+
+// A rule of the collision parameters on the scene's own fields: mass, radius and cloth
+// friction are the scene's, the rest is ball_contact.
+FieldPath scene_field_of_collision(const FieldPath& field) {
+  if (field == FieldPath{"mu_table"}) return {"cloth", "mu_slide"};
+  if (field == FieldPath{"mass"} || field == FieldPath{"radius"})
+    return field.under({"ball_and_cushion"});
+  return field.under({"ball_contact"});
+}
+
+// Where a ball may lie: on the cloth, out of the pockets, clear of the obstacles and,
+// with `object_balls`, of the object balls other than `self` (an index into balls, or -1).
+Validation place_error(const Scene& s, Vec2 p, const FieldPath& what, bool object_balls, int self) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    return invalid(what, "must be finite (m)", std::isfinite(p.x) ? p.y : p.x);
+  const double off = s.contact_offset();
+  if (p.x < off || p.x > s.length - off || p.y < off || p.y > s.width - off)
+    return invalid(what, fmt::format("({:.4g}, {:.4g}) lies off the table: its centre must be "
+                                     "within [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m",
+                                     p.x, p.y, off, s.length - off, off, s.width - off));
+  for (size_t i = 0; i < s.pockets.size(); ++i) {
+    if (norm(p - s.pockets[i].centre) < s.pockets[i].radius) {
+      ValidationError e = invalid(what, "lies inside {other}");
+      e.other = FieldPath{"pockets", static_cast<int>(i)};
+      return e;
+    }
+  }
+  for (size_t i = 0; i < s.obstacles.size(); ++i) {
+    if (overlap(p, s.obstacles[i], s.radius())) {
+      ValidationError e = invalid(what, "overlaps {other}");
+      e.other = FieldPath{"obstacles", static_cast<int>(i)};
+      return e;
+    }
+  }
+  for (size_t i = 0; object_balls && i < s.balls.size(); ++i) {
+    if (static_cast<int>(i) != self && overlap(p, s.balls[i].position, s.radius())) {
+      ValidationError e = invalid(what, "overlaps {other}");
+      e.other = FieldPath{"balls", s.balls[i].name};
+      return e;
+    }
+  }
+  return {};
+}
+
+// Object balls: a name each (not empty, not the cue ball's, not repeated), then a place.
+Validation balls_error(const Scene& s) {
+  for (size_t i = 0; i < s.balls.size(); ++i) {
+    const std::string& name = s.balls[i].name;
+    const FieldPath name_field{"balls", static_cast<int>(i), "name"};
+    if (name.empty()) return invalid(name_field, "must not be empty");
+    if (name == kCueBallName)
+      return invalid(name_field,
+                     fmt::format("must not be \"{}\": that is the cue ball's name", kCueBallName));
+    for (size_t j = 0; j < i; ++j) {
+      if (s.balls[j].name == name) {
+        ValidationError e =
+            invalid(name_field, fmt::format("repeats the name \"{}\" of {{other}}", name));
+        e.other = FieldPath{"balls", static_cast<int>(j), "name"};
+        return e;
+      }
+    }
+  }
+  for (size_t i = 0; i < s.balls.size(); ++i)
+    if (Validation e = place_error(s, s.balls[i].position, {"balls", s.balls[i].name}, true,
+                                   static_cast<int>(i)))
+      return e;
+  return {};
+}
+
+}  // namespace
+
+Validation Scene::validate() const {
+  if (Validation e = ball_and_cushion.validate()) return e->under({"ball_and_cushion"});
+  if (!std::isfinite(length) || !(length > 0.0))
+    return invalid({"length"}, "must be positive and finite (m)", length);
+  if (!std::isfinite(width) || !(width > 0.0))
+    return invalid({"width"}, "must be positive and finite (m)", width);
+  const double off = contact_offset();
+  if (!(length > 2.0 * off) || !(width > 2.0 * off)) {
+    // The shorter side is the one that leaves no room; the ball's radius sets the room
+    // it needs, so it is the rule's other field.
+    const bool length_short = !(length > 2.0 * off);
+    ValidationError e = invalid({length_short ? "length" : "width"},
+                                fmt::format("must leave room for a ball: more than 2 R cos(theta) "
+                                            "= {:.4g} m ({{other}} R = {:.4g} m)",
+                                            2.0 * off, radius()),
+                                length_short ? length : width);
+    e.other = FieldPath{"ball_and_cushion", "radius"};
+    return e;
+  }
+  if (!std::isfinite(cloth.mu_roll) || !(cloth.mu_roll > 0.0))
+    return invalid({"cloth", "mu_roll"},
+                   "must be positive and finite: without rolling resistance a ball never stops",
+                   cloth.mu_roll);
+  if (!std::isfinite(cloth.mu_slide) || !(cloth.mu_slide > 0.0))
+    return invalid({"cloth", "mu_slide"},
+                   "must be positive and finite: without sliding friction a ball never rolls",
+                   cloth.mu_slide);
+  if (!std::isfinite(cloth.mu_spin) || cloth.mu_spin < 0.0)
+    return invalid({"cloth", "mu_spin"}, "must be finite and not negative", cloth.mu_spin);
+  if (!std::isfinite(cloth.gravity) || !(cloth.gravity > 0.0))
+    return invalid({"cloth", "gravity"}, "must be positive and finite (m/s^2)", cloth.gravity);
+  if (Validation e = ball_ball_params().validate()) {
+    e->field = scene_field_of_collision(e->field);
+    if (e->other) e->other = scene_field_of_collision(*e->other);
+    return e;
+  }
+  for (size_t i = 0; i < pockets.size(); ++i) {
+    const Pocket& k = pockets[i];
+    const int index = static_cast<int>(i);
+    if (!std::isfinite(k.centre.x) || !std::isfinite(k.centre.y))
+      return invalid({"pockets", index, "centre"}, "must be finite (m)",
+                     std::isfinite(k.centre.x) ? k.centre.y : k.centre.x);
+    if (!std::isfinite(k.radius) || !(k.radius > 0.0))
+      return invalid({"pockets", index, "radius"}, "must be positive and finite (m)", k.radius);
+  }
+  for (size_t i = 0; i < obstacles.size(); ++i) {
+    const FieldPath name{"obstacles", static_cast<int>(i)};
+    const Vec2 o = obstacles[i];
+    if (!std::isfinite(o.x) || !std::isfinite(o.y))
+      return invalid(name, "must be finite (m)", std::isfinite(o.x) ? o.y : o.x);
+    if (o.x < off || o.x > length - off || o.y < off || o.y > width - off)
+      return invalid(name, fmt::format("lies off the table (its centre must be at least {} m "
+                                       "inside every cushion nose)",
+                                       std::to_string(off)));
+    for (size_t j = 0; j < i; ++j) {
+      if (overlap(o, obstacles[j], radius())) {
+        ValidationError e = invalid(name, "overlaps {other}");
+        e.other = FieldPath{"obstacles", static_cast<int>(j)};
+        return e;
+      }
+    }
+  }
+  return balls_error(*this);
+}
+
+Validation Scene::check_position(Vec2 p, const FieldPath& what) const {
+  return place_error(*this, p, what, true, -1);
+}
+
+Validation Scene::check_rest_position(Vec2 p, const FieldPath& what) const {
+  return place_error(*this, p, what, false, -1);
+}
+
+std::vector<Pocket> standard_pockets(double length, double width, double radius) {
+  return {{{0.0, 0.0}, radius},   {{length / 2, 0.0}, radius},   {{length, 0.0}, radius},
+          {{0.0, width}, radius}, {{length / 2, width}, radius}, {{length, width}, radius}};
+}
+
+Scene snooker_scene() {
+  Scene s;
+  s.pockets = standard_pockets(s.length, s.width, kDefaultPocketRadius);
+  return s;
+}
+
+Validation Shot::validate() const {
+  if (!std::isfinite(speed) || !(speed > 0.0))
+    return invalid({"speed"}, "must be positive and finite (m/s)", speed);
+  if (!std::isfinite(aim_deg)) return invalid({"aim_deg"}, "must be finite (deg)", aim_deg);
+  if (!std::isfinite(topspin_k)) return invalid({"topspin_k"}, "must be finite", topspin_k);
+  if (!std::isfinite(sidespin_k)) return invalid({"sidespin_k"}, "must be finite", sidespin_k);
+  return {};
+}
+
+CompiledScene::CompiledScene(Scene scene)
+    : scene_(std::move(scene)), error_(scene_.validate()), ball_ball_(scene_.ball_ball_params()) {}
+
+const char* to_string(EventType type) {
+  switch (type) {
+    case EventType::strike: return "strike";
+    case EventType::slide_to_roll: return "slide_to_roll";
+    case EventType::spin_stop: return "spin_stop";
+    case EventType::cushion: return "cushion";
+    case EventType::pocket: return "pocket";
+    case EventType::obstacle: return "obstacle";
+    case EventType::rest: return "rest";
+    case EventType::ball_contact: return "ball_contact";
+  }
+  return "unknown";
+}
+
+const char* to_string(Motion motion) {
+  switch (motion) {
+    case Motion::sliding: return "sliding";
+    case Motion::rolling: return "rolling";
+    case Motion::resting: return "resting";
+  }
+  return "unknown";
+}
+
+const char* to_string(ShotStatus status) {
+  switch (status) {
+    case ShotStatus::rest: return "rest";
+    case ShotStatus::pocketed: return "pocketed";
+    case ShotStatus::hit_obstacle: return "hit_obstacle";
+    case ShotStatus::invalid_input: return "invalid_input";
+    case ShotStatus::event_limit: return "event_limit";
+    case ShotStatus::impact_failed: return "impact_failed";
+    case ShotStatus::collision_failed: return "collision_failed";
+  }
+  return "unknown";
+}
+
+ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options) {
+  if (options.impact_method == ImpactMethod::paper) return ImpactMethod::paper;
+  if (options.impact_method == ImpactMethod::extrapolation) return ImpactMethod::extrapolation;
+  if (options.impact_method == ImpactMethod::table && options.table != nullptr &&
+      options.table->covers(scene.ball_and_cushion) &&
+      options.table->measured_error().max_state_relative <= options.impact_accuracy)
+    return ImpactMethod::table;
+  return ImpactMethod::exact;
+}
+
+}  // namespace cueplan::physics
