@@ -350,6 +350,14 @@ draw::TableScene drawing_of(const prob::Problem& problem, const phys::Shot& shot
                             const phys::SimulationOptions& options, const phys::ShotResult& r) {
   draw::TableScene d = draw::problem_table(problem);
   d.balls.front().paths.push_back({r.path, r.events, false});
+  // Each object ball that moved, along its own path (problem_table puts them after the
+  // cue ball, by name).
+  for (size_t k = 1; k < r.balls.size(); ++k) {
+    const phys::BallOutcome& b = r.balls[k];
+    if (b.path.empty()) continue;
+    for (draw::DrawnBall& drawn : d.balls)
+      if (drawn.name == b.name) drawn.paths.push_back({b.path, b.events, false});
+  }
 
   std::string buf;
   buf = fmt::format("{}: V = {:.4g} m/s, aim {:.4g}\u00b0, k_{{T}} = {:.3g}, k_{{S}} = {:.3g}",
@@ -380,6 +388,15 @@ draw::TableScene drawing_of(const prob::Problem& problem, const phys::Shot& shot
                     cushions.c_str(), r.message.c_str());
   }
   outcome = buf;
+  if (r.first_contact > 0) {
+    std::string pots;
+    for (size_t k = 1; k < r.balls.size(); ++k)
+      if (r.balls[k].pocketed)
+        pots += fmt::format("{}{} in {}", pots.empty() ? "" : ", ", r.balls[k].name,
+                            prob::pocket_name(problem.scene, r.balls[k].pocket));
+    outcome += fmt::format(" First contact {}; {}.", first_contact_name(r),
+                           pots.empty() ? "no object ball pocketed" : "pocketed " + pots);
+  }
   if (r.rigid_limit_exceeded) outcome += " Rigid-cushion limit exceeded.";
   d.caption.push_back(outcome);
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -80,7 +81,8 @@ struct Frame {
 
 // What the picture shows, for its legend.
 struct Shown {
-  bool sliding = false, rolling = false, faint = false, contact = false, rest = false,
+  bool sliding = false, rolling = false, faint = false, contact = false, ball_contact = false,
+       rest = false,
        pocketed = false, obstacle_hit = false, strokes = false, grey_obstacles = false;
 };
 
@@ -298,6 +300,7 @@ void find_shown(const TableScene& scene, Shown* shown) {
       }
       for (const phys::ShotEvent& e : path.events) {
         shown->contact = shown->contact || e.type == phys::EventType::cushion;
+        shown->ball_contact = shown->ball_contact || e.type == phys::EventType::ball_contact;
         shown->rest = shown->rest || e.type == phys::EventType::rest;
         shown->pocketed = shown->pocketed || e.type == phys::EventType::pocket;
         shown->obstacle_hit = shown->obstacle_hit || e.type == phys::EventType::obstacle;
@@ -333,10 +336,12 @@ std::vector<detail::LegendEntry> legend_entries(const TableScene& scene, const L
            c.text(one, x, y, {0.5, VAnchor::middle}, detail::white(), "");
          },
          "stroke number, at the stroke's start"});
-  if (s.contact)
+  if (s.contact || s.ball_contact)
     entries.push_back(
         {[lr](Canvas& c, double x, double y) { draw_contact_ring(c, x, y, lr, "legend-symbol"); },
-         "ball at a cushion contact (numbered on the cushion)"});
+         !s.ball_contact ? "ball at a cushion contact (numbered on the cushion)"
+         : !s.contact    ? "ball where it strikes another"
+                         : "ball at a contact (cushion contacts numbered on the cushion)"});
   if (s.rest)
     entries.push_back({[lr](Canvas& c, double x, double y) {
                          draw_ghost(c, x, y, lr, detail::white(), "legend-symbol");
@@ -763,9 +768,10 @@ void balls(Canvas& c, const Layout& l, const TableScene& scene,
            const std::vector<PlacedPath>& placed) {
   for (const PlacedPath& p : placed)
     for (const phys::ShotEvent& e : p.path->events)
-      if (e.type == phys::EventType::cushion) {
+      if (e.type == phys::EventType::cushion || e.type == phys::EventType::ball_contact) {
         const Point at = l.f.at(e.position);
-        draw_contact_ring(c, at.x, at.y, l.ball, "cushion-contact");
+        draw_contact_ring(c, at.x, at.y, l.ball,
+                          e.type == phys::EventType::cushion ? "cushion-contact" : "ball-contact");
       }
   // Where each movement ends: a ghost of the ball, crossed when it did not come to rest.
   for (const PlacedPath& p : placed) {
@@ -931,6 +937,8 @@ void legend(Canvas& c, const Layout& l) {
 
 }  // namespace
 
+Colour other_ball_colour() { return Colour::hex("#e8d9b0"); }
+
 Colour sliding_colour() {
   return Colour::hex("#D55E00");
 }
@@ -952,6 +960,15 @@ std::optional<Colour> ball_colour(std::string_view name) {
       {"12", "#5b2a86"},       {"13", "#f07c00"},    {"14", "#1f7a3a"},   {"15", "#7b1e1e"}};
   for (const Named& n : kColours)
     if (name == n.name) return Colour::hex(n.colour);
+  // A colour numbered to tell balls of one colour apart: "red1", "red_12", "red 3".
+  const size_t stem = name.find_last_not_of("0123456789");
+  if (stem != std::string_view::npos && stem + 1 < name.size() && !std::isdigit(static_cast<unsigned char>(name[0]))) {
+    std::string_view base = name.substr(0, stem + 1);
+    if (base.back() == '_' || base.back() == ' ' || base.back() == '-') base.remove_suffix(1);
+    for (const Named& n : kColours)
+      if (base == n.name && !std::isdigit(static_cast<unsigned char>(n.name[0])))
+        return Colour::hex(n.colour);
+  }
   return std::nullopt;
 }
 
@@ -969,6 +986,8 @@ TableScene problem_table(const problems::Problem& problem) {
   t.scene = problem.scene;
   t.target = TargetZone{problem.target, problem.tolerance};
   t.balls.push_back({"cue ball", *ball_colour("cue ball"), problem.cue_ball, {}});
+  for (const phys::ObjectBall& b : problem.scene.balls)
+    t.balls.push_back({b.name, ball_colour(b.name).value_or(other_ball_colour()), b.position, {}});
   for (size_t i = 0; i < problem.scene.obstacles.size(); ++i)
     t.balls.push_back(
         {fmt::format("obstacle {}", i + 1), *ball_colour("red"), problem.scene.obstacles[i], {}});

@@ -516,6 +516,43 @@ TEST(Table, ObstaclesAreRedBallsWithNames) {
   EXPECT_EQ(ball_colour("8")->to_hex(), ball_colour("black")->to_hex());
 }
 
+TEST(Table, ObjectBallsStandInTheirColoursAndMoveAlongTheirPaths) {
+  const prob::Problem problem = shipped("pots/plant_two_balls");
+  const TableScene t = problem_table(problem);
+  ASSERT_EQ(t.balls.size(), 3u);
+  EXPECT_EQ(t.balls[1].name, "red");
+  EXPECT_EQ(t.balls[2].name, "blue");
+  EXPECT_EQ(t.balls[2].colour.to_hex(), ball_colour("blue")->to_hex());
+  EXPECT_EQ(t.balls[2].start.x, problem.scene.balls[1].position.x);
+  EXPECT_EQ(ball_colour("red_12")->to_hex(), ball_colour("red")->to_hex());
+  EXPECT_EQ(ball_colour("yellow3")->to_hex(), ball_colour("yellow")->to_hex());
+  EXPECT_FALSE(ball_colour("16").has_value());
+  EXPECT_FALSE(ball_colour("lilac2").has_value());
+  // The plant: red sends blue into the top-right pocket; each ball's path is drawn and
+  // the blue is marked pocketed.
+  const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, {2.86, 23.88, -1.2, 0.2});
+  ASSERT_TRUE(r.balls.at(2).pocketed);
+  TableScene moved = t;
+  moved.balls[0].paths.push_back({r.path, r.events, false});
+  for (size_t k = 1; k < 3; ++k) moved.balls[k].paths.push_back({r.balls[k].path, r.balls[k].events, false});
+  const Picture still = table_picture(t), p = table_picture(moved);
+  for (const char* name : {"cue ball", "red", "blue"}) EXPECT_TRUE(has_text(p, "label", name)) << name;
+  EXPECT_EQ(count(still, "end-cross"), 0u);
+  EXPECT_EQ(count(p, "end-cross"), 1u);
+  TableScene cue_only = t;
+  cue_only.balls[0].paths.push_back({r.path, r.events, false});
+  const Picture q = table_picture(cue_only);
+  EXPECT_GT(count(p, "path-sliding") + count(p, "path-rolling"),
+            count(q, "path-sliding") + count(q, "path-rolling"));
+  // Each contact is ringed on both its balls: cue-red, then red-blue (and any later).
+  size_t contacts = 0;
+  for (const phys::BallOutcome& b : r.balls)
+    for (const phys::ShotEvent& e : b.events) contacts += e.type == phys::EventType::ball_contact;
+  EXPECT_GE(contacts, 4u);
+  EXPECT_EQ(count(p, "ball-contact"), contacts);
+  EXPECT_TRUE(has_text(p, "legend-text", "ball at a contact (cushion contacts numbered on the cushion)"));
+}
+
 // Two strokes of a route, the second back along the first's line.
 TableScene there_and_back(phys::ShotResult* first, phys::ShotResult* second) {
   const prob::Problem p = shipped("routes/two_stroke_speed_limit");

@@ -206,6 +206,18 @@ void expect_same_problem(const prob::Problem& a, const prob::Problem& b) {
     EXPECT_EQ(s.obstacles[i].x, t.obstacles[i].x);
     EXPECT_EQ(s.obstacles[i].y, t.obstacles[i].y);
   }
+  ASSERT_EQ(s.balls.size(), t.balls.size());
+  for (size_t i = 0; i < s.balls.size(); ++i) {
+    EXPECT_EQ(s.balls[i].name, t.balls[i].name);
+    EXPECT_EQ(s.balls[i].position.x, t.balls[i].position.x);
+    EXPECT_EQ(s.balls[i].position.y, t.balls[i].position.y);
+  }
+  EXPECT_EQ(a.pot.has_value(), b.pot.has_value());
+  if (a.pot && b.pot) {
+    EXPECT_EQ(a.pot->ball, b.pot->ball);
+    EXPECT_EQ(a.pot->pocket, b.pot->pocket);
+  }
+  EXPECT_EQ(a.first_contact, b.first_contact);
   EXPECT_EQ(a.max_strokes, b.max_strokes);
   EXPECT_EQ(a.time_budget_s, b.time_budget_s);
 }
@@ -231,17 +243,26 @@ TEST(ServeExamples, AreTheShippedProblemsAndLoadAsTheirFilesDo) {
   const Answer a = get(server, "/api/examples");
   ASSERT_EQ(a.status, 200);
   std::vector<std::string> files;
-  for (const auto& entry : fs::directory_iterator(CUEPLAN_PROBLEMS_DIR))
-    if (entry.path().extension() == ".yaml") files.push_back(entry.path().filename().string());
+  for (const char* dir : {"", "pots"})
+    for (const auto& entry : fs::directory_iterator(fs::path(CUEPLAN_PROBLEMS_DIR) / dir))
+      if (entry.path().extension() == ".yaml")
+        files.push_back((fs::path(dir) / entry.path().filename()).string());
   ASSERT_EQ(a.body["examples"].size(), files.size());
+  // Read in the reply's order, as the page does: the order of object balls is theirs
+  // on the table (it numbers them for the simulator's tie order).
+  const nlohmann::ordered_json in_order = nlohmann::ordered_json::parse(a.raw);
+  size_t index = 0;
   for (const json& e : a.body["examples"]) {
     const std::string file = e["file"];
     SCOPED_TRACE(file);
+    const nlohmann::ordered_json& problem_fields = in_order["examples"][index++]["problem"];
     // The JSON problem, read as a request's, is the file's problem field for field.
-    const prob::LoadResult from_file = prob::load_problem(problem_path(fs::path(file).stem()));
+    EXPECT_NE(std::find(files.begin(), files.end(), file), files.end());
+    const prob::LoadResult from_file =
+        prob::load_problem((fs::path(CUEPLAN_PROBLEMS_DIR) / file).string());
     ASSERT_TRUE(from_file.ok()) << from_file.error;
     const cueplan::cli::ProblemFromJson from_json =
-        cueplan::cli::problem_from_json(nlohmann::ordered_json::parse(e["problem"].dump()), "problem");
+        cueplan::cli::problem_from_json(problem_fields, "problem");
     ASSERT_TRUE(from_json.problem) << from_json.error.message;
     expect_same_problem(*from_json.problem, *from_file.problem);
     EXPECT_EQ(e["name"], from_file.problem->name);

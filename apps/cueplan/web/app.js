@@ -129,8 +129,13 @@ function positions() {
     target: p.target,
     tolerance: s.tolerance,
     obstacles: p.obstacles ?? [],
-    balls: p.balls,
+    balls: objectBalls(p),
   };
+}
+
+// The problem's object balls as the file gives them (name -> [x, y]), in its order.
+function objectBalls(p) {
+  return Object.entries(p.balls ?? {}).map(([name, position]) => ({ name, position }));
 }
 
 function selectExample(index) {
@@ -162,16 +167,39 @@ function selectExample(index) {
 
 // The pot's place: an object ball into a pocket, for problems that have object balls.
 function fillPot() {
-  const balls = state.problem.balls ?? [];
+  const balls = objectBalls(state.problem);
   const pockets = state.scene.pockets;
   const ball = $("pot-ball"), pocket = $("pot-pocket");
-  ball.replaceChildren(...(balls.length ? balls : [{ name: "none on this table" }]).map((b) => new Option(b.name)));
-  pocket.replaceChildren(...(pockets.length ? pockets.map((p) => p.name.replace("_", " "))
-    : ["no pockets on this table"]).map((name) => new Option(name)));
-  ball.disabled = pocket.disabled = balls.length === 0;
-  $("pot-note").textContent = balls.length
-    ? "Choose the ball to pot and its pocket."
-    : "This problem has no object balls: the plan leaves the cue ball on the target. Problems with object balls offer a pot here.";
+  const none = new Option("no pot", "");
+  ball.replaceChildren(...(balls.length ? [none, ...balls.map((b) => new Option(b.name, b.name))]
+    : [new Option("none on this table", "")]));
+  pocket.replaceChildren(...(pockets.length ? pockets.map((p) => new Option(p.name.replace("_", " "), p.name))
+    : [new Option("no pockets on this table", "")]));
+  ball.disabled = balls.length === 0;
+  const pot = state.problem.pot;
+  ball.value = pot?.ball ?? "";
+  if (pot?.pocket) pocket.value = pot.pocket;
+  pocket.disabled = !pot;
+  $("pot-note").textContent = !balls.length
+    ? "This problem has no object balls: the plan leaves the cue ball on the target. Problems with object balls offer a pot here."
+    : pot ? `Pot the ${pot.ball} in the ${pot.pocket.replace("_", " ")} pocket; the cue ball must strike ` +
+      `the ${state.problem.first_contact ?? pot.ball} first.`
+    : "Choose a ball to pot and its pocket, or play for position only.";
+}
+
+// The pot chosen in the controls becomes the problem's.
+function choosePot() {
+  const ball = $("pot-ball").value, pocket = $("pot-pocket").value;
+  const p = state.problem;
+  if (!ball) {
+    delete p.pot;
+    delete p.first_contact;
+  } else {
+    p.pot = { ball, pocket: pocket || state.scene.pockets[0]?.name };
+    if (p.first_contact && !(p.first_contact in (p.balls ?? {}))) delete p.first_contact;
+  }
+  fillPot();
+  changed();
 }
 
 // The problem changed: drop what was computed for the old one.
@@ -199,7 +227,7 @@ function moveBall(kind, index, place, done) {
   if (kind === "target") p.target = place;
   else if (kind === "cue_ball") p.cue_ball = place;
   else if (kind === "obstacles") p.obstacles[index] = place;
-  else if (kind === "balls") p.balls[index].position = place;
+  else if (kind === "balls") p.balls[objectBalls(p)[index].name] = place;
   if (!done) {
     table.setPositions(positions());
     table.setPaths([]);
@@ -284,6 +312,19 @@ async function simulate(stroke, method, { signal, onWait } = {}) {
 }
 
 function outcomeText(shot) {
+  return cueOutcome(shot) + ballsOutcome(shot);
+}
+
+// What the cue ball did to the object balls: what it struck first, what dropped.
+function ballsOutcome(shot) {
+  if (!shot.balls || shot.balls.length < 2) return "";
+  if (!shot.first_contact) return "; it strikes no object ball";
+  const pots = shot.balls.slice(1).filter((b) => b.pocketed)
+    .map((b) => `the ${b.name} in the ${b.pocket.replace("_", " ")} pocket`);
+  return `; it strikes the ${shot.first_contact} first and ${pots.length ? "pots " + pots.join(" and ") : "pots nothing"}`;
+}
+
+function cueOutcome(shot) {
   if (shot.status === "rest") {
     const miss = shot.miss_distance;
     return `stops at x = ${fixed(shot.final_position[0], 3)} m, y = ${fixed(shot.final_position[1], 3)} m ` +
@@ -606,6 +647,8 @@ async function pollHealth() {
 function bindControls() {
   $("example").onchange = (e) => selectExample(Number(e.target.value));
   $("reset").onclick = () => selectExample(state.examples.indexOf(state.example));
+  $("pot-ball").onchange = choosePot;
+  $("pot-pocket").onchange = choosePot;
   $("plan").onclick = plan;
   $("play").onclick = play;
   $("spinmap").onclick = requestMap;

@@ -201,7 +201,16 @@ export class TableView {
     for (const { shot, style } of paths) this.drawPath(shot, style);
   }
 
+  // A shot's paths: the cue ball's, then each object ball's that moved (`balls` of the
+  // simulate reply, the cue ball first), each ending in a ghost where it stops.
   drawPath(shot, style) {
+    this.drawBallPath(shot, style);
+    for (const b of (shot.balls ?? []).slice(1))
+      if (b.path?.length) this.drawBallPath(b, style);
+  }
+
+  // One ball's movement: {path, events, final_position}.
+  drawBallPath(shot, style) {
     const width = style === "faint" ? 0.006 : style === "hover" ? 0.009 : 0.012;
     const g = el("g", { class: `path ${style}`, opacity: style === "faint" ? 0.55 : 1 }, this.pathLayer);
     // Consecutive segments of one motion make one SVG path of quadratic Bezier pieces

@@ -47,9 +47,11 @@ struct DrawnBall {
 };
 
 // The colours of named balls: "cue ball" and "white", the snooker colours (red, yellow,
-// green, brown, blue, pink, black) and the pool balls "1" to "15" (9-15 as 1-7). Empty
-// for any other name.
+// green, brown, blue, pink, black), also numbered ("red1", "red_2", "red 3"), and the
+// pool balls "1" to "15" (9-15 as 1-7). Empty for any other name.
 std::optional<Colour> ball_colour(std::string_view name);
+// The fill of a ball whose name has no colour (ivory).
+Colour other_ball_colour();
 
 // A small marker on the cloth, e.g. where one spin of a spin map comes to rest.
 struct TableDot {
@@ -82,7 +84,8 @@ struct TableScene {
 };
 
 // The scene of a problem file: its table, its target zone, the cue ball (white, "cue
-// ball") and its obstacles as red balls named "obstacle 1", "obstacle 2", ...
+// ball"), its object balls by name in their colours (ball_colour, else
+// other_ball_colour) and its obstacles as red balls named "obstacle 1", "obstacle 2", ...
 TableScene problem_table(const problems::Problem& problem);
 
 // The markings TableMarkings::automatic chooses for a scene.
