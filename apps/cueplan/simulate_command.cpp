@@ -350,13 +350,13 @@ draw::TableScene drawing_of(const prob::Problem& problem, const phys::Shot& shot
                             const phys::SimulationOptions& options, const phys::ShotResult& r) {
   draw::TableScene d = draw::problem_table(problem);
   d.balls.front().paths.push_back({r.path, r.events, false});
-  // Each object ball that moved, along its own path (problem_table puts them after the
-  // cue ball, by name).
+  // Each object ball that moved, along its own path in its colour (problem_table puts
+  // them after the cue ball, by name).
   for (size_t k = 1; k < r.balls.size(); ++k) {
     const phys::BallOutcome& b = r.balls[k];
     if (b.path.empty()) continue;
     for (draw::DrawnBall& drawn : d.balls)
-      if (drawn.name == b.name) drawn.paths.push_back({b.path, b.events, false});
+      if (drawn.name == b.name) drawn.paths.push_back({b.path, b.events, false, 0, drawn.colour});
   }
 
   std::string buf;

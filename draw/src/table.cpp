@@ -81,8 +81,8 @@ struct Frame {
 
 // What the picture shows, for its legend.
 struct Shown {
-  bool sliding = false, rolling = false, faint = false, contact = false, ball_contact = false,
-       rest = false,
+  bool sliding = false, rolling = false, own_colour = false, faint = false, contact = false,
+       ball_contact = false, rest = false,
        pocketed = false, obstacle_hit = false, strokes = false, grey_obstacles = false;
 };
 
@@ -295,6 +295,10 @@ void find_shown(const TableScene& scene, Shown* shown) {
         continue;
       }
       for (const phys::PathSegment& s : path.segments) {
+        if (path.colour) {
+          shown->own_colour = true;
+          continue;
+        }
         shown->sliding = shown->sliding || s.motion == phys::Motion::sliding;
         shown->rolling = shown->rolling || s.motion == phys::Motion::rolling;
       }
@@ -325,6 +329,17 @@ std::vector<detail::LegendEntry> legend_entries(const TableScene& scene, const L
     entries.push_back({stroke_symbol(sliding_colour(), style.line_width + 0.5), "sliding"});
   if (s.rolling)
     entries.push_back({stroke_symbol(rolling_colour(), style.line_width + 0.5), "rolling"});
+  if (s.own_colour)
+    entries.push_back({[w = style.line_width](Canvas& c, double x, double y) {
+                         const Colour grey = Colour::hex("#9a9a9a");
+                         Pen dashed = path_pen(grey, w);
+                         dashed.dash = {4.0, 3.0};
+                         dashed.cap = detail::LineCap::butt;
+                         c.stroke(Path().move_to(x - 13.0, y).line_to(x, y), dashed, "legend-symbol");
+                         c.stroke(Path().move_to(x, y).line_to(x + 13.0, y), path_pen(grey, w),
+                                  "legend-symbol");
+                       },
+                       "an object ball's path, in its colour (dashed while it slides)"});
   if (s.faint && !scene.faint_legend.empty())
     entries.push_back(
         {stroke_symbol(detail::faint_grey().with_alpha(0.7), 0.5 * style.line_width + 0.5),
@@ -674,6 +689,16 @@ void draw_path(Canvas& c, const DrawnPath& path, const Frame& f, Point offset,
     if (path.faint) {
       c.stroke(run, path_pen(detail::faint_grey().with_alpha(0.6), 0.5 * style.line_width),
                "path-faint");
+    } else if (path.colour) {
+      const bool sliding = motion == phys::Motion::sliding;
+      c.stroke(run, path_pen(detail::ink().with_alpha(0.55), style.line_width + 1.5),
+               "path-ball-edge");
+      Pen pen = path_pen(*path.colour, style.line_width);
+      if (sliding) {
+        pen.dash = {3.0 * style.line_width, 2.0 * style.line_width};
+        pen.cap = detail::LineCap::butt;
+      }
+      c.stroke(run, pen, sliding ? "path-ball-sliding" : "path-ball-rolling");
     } else {
       const bool sliding = motion == phys::Motion::sliding;
       c.stroke(run, path_pen(sliding ? sliding_colour() : rolling_colour(), style.line_width),
@@ -703,6 +728,10 @@ void draw_path(Canvas& c, const DrawnPath& path, const Frame& f, Point offset,
 // Small arrowheads halfway along every piece long enough to carry one, pointing the way
 // the ball moves.
 void direction_arrows(Canvas& c, const DrawnPath& path, const Frame& f, Point offset) {
+  const auto colour_of = [&](phys::Motion m) {
+    if (path.colour) return *path.colour;
+    return m == phys::Motion::sliding ? sliding_colour() : rolling_colour();
+  };
   constexpr double kMinLength = 90.0;  // px of path a piece needs for an arrow
   constexpr int kSamples = 24;
   constexpr double kHead = 9.0;  // px from tip to base
@@ -735,7 +764,7 @@ void direction_arrows(Canvas& c, const DrawnPath& path, const Frame& f, Point of
     const double half = 0.4 * kHead;
     c.fill(Path().polygon(
                {{x, y}, {bx - half * uy, by + half * ux}, {bx + half * uy, by - half * ux}}),
-           s.motion == phys::Motion::sliding ? sliding_colour() : rolling_colour(), "direction");
+           colour_of(s.motion), "direction");
   }
 }
 

@@ -534,7 +534,9 @@ TEST(Table, ObjectBallsStandInTheirColoursAndMoveAlongTheirPaths) {
   ASSERT_TRUE(r.balls.at(2).pocketed);
   TableScene moved = t;
   moved.balls[0].paths.push_back({r.path, r.events, false});
-  for (size_t k = 1; k < 3; ++k) moved.balls[k].paths.push_back({r.balls[k].path, r.balls[k].events, false});
+  for (size_t k = 1; k < 3; ++k)
+    moved.balls[k].paths.push_back(
+        {r.balls[k].path, r.balls[k].events, false, 0, moved.balls[k].colour});
   const Picture still = table_picture(t), p = table_picture(moved);
   for (const char* name : {"cue ball", "red", "blue"}) EXPECT_TRUE(has_text(p, "label", name)) << name;
   EXPECT_EQ(count(still, "end-cross"), 0u);
@@ -542,8 +544,13 @@ TEST(Table, ObjectBallsStandInTheirColoursAndMoveAlongTheirPaths) {
   TableScene cue_only = t;
   cue_only.balls[0].paths.push_back({r.path, r.events, false});
   const Picture q = table_picture(cue_only);
-  EXPECT_GT(count(p, "path-sliding") + count(p, "path-rolling"),
+  // The object balls' paths in their own colours, the cue ball's as before.
+  EXPECT_EQ(count(p, "path-sliding") + count(p, "path-rolling"),
             count(q, "path-sliding") + count(q, "path-rolling"));
+  EXPECT_GE(count(p, "path-ball-sliding") + count(p, "path-ball-rolling"), 2u);
+  EXPECT_EQ(count(q, "path-ball-sliding") + count(q, "path-ball-rolling"), 0u);
+  EXPECT_TRUE(has_text(p, "legend-text", "an object ball's path, in its colour (dashed while it slides)"));
+  EXPECT_FALSE(has_text(q, "legend-text", "an object ball's path, in its colour (dashed while it slides)"));
   // Each contact is ringed on both its balls: cue-red, then red-blue (and any later).
   size_t contacts = 0;
   for (const phys::BallOutcome& b : r.balls)

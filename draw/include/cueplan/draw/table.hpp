@@ -33,6 +33,9 @@ struct DrawnPath {
   std::vector<physics::ShotEvent> events;      // cushion contacts and the end are marked
   bool faint = false;  // an alternative: thin, grey, without markers, behind the others
   int stroke = 0;      // > 0: the stroke's number, written on the table at its start
+  // Drawn in this colour (an object ball's own), edged dark, dashed while the ball
+  // slides; empty: in the sliding and rolling colours (the cue ball's).
+  std::optional<Colour> colour;
 };
 
 // A ball on the table: where it stands and how it moves, stroke after stroke. It is drawn
