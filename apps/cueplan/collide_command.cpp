@@ -238,9 +238,9 @@ CollideCommand::CollideCommand(CLI::App& parent) {
       ->capture_default_str()
       ->group(model);
   c.add_option("--method", args_.method,
-               "mathavan_2014: exact (adaptive integrator landing on its events) or paper (N "
-               "fixed impulse steps)")
-      ->type_name("exact|paper")
+               "mathavan_2014: exact (Taylor series landing on its events), extrapolation (a "
+               "second exact method: adaptive extrapolation) or paper (N fixed impulse steps)")
+      ->type_name("exact|extrapolation|paper")
       ->capture_default_str()
       ->group(model);
   c.add_option("--steps", args_.steps, "paper: number of impulse steps N, >= 1")
@@ -321,14 +321,15 @@ struct CollideCommand::Inputs {
 
 std::string CollideCommand::read_options(phys::CollisionOptions* options) const {
   if (!phys::parse_collision_method(args_.method, &options->method))
-    return fmt::format("--method must be exact or paper, got '{}'", args_.method);
+    return fmt::format("--method must be exact, extrapolation or paper, got '{}'", args_.method);
   options->paper_steps = args_.steps;
   options->tolerance = args_.tolerance;
   // Both the paper's and the exact method's settings are checked whatever the method, so
   // that a bad value is not silently ignored.
   phys::CollisionOptions each = *options;
   for (phys::CollisionMethod method :
-       {phys::CollisionMethod::paper, phys::CollisionMethod::exact}) {
+       {phys::CollisionMethod::paper, phys::CollisionMethod::exact,
+        phys::CollisionMethod::extrapolation}) {
     each.method = method;
     if (phys::Validation why = each.validate()) return flag_message(*why);
   }

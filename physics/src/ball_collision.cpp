@@ -161,6 +161,7 @@ const char* to_string(CollisionMethod method) {
   switch (method) {
     case CollisionMethod::exact: return "exact";
     case CollisionMethod::paper: return "paper";
+    case CollisionMethod::extrapolation: return "extrapolation";
   }
   return "unknown";
 }
@@ -209,7 +210,8 @@ bool parse_ball_friction(const std::string& name, BallFriction* out) {
 }
 
 bool parse_collision_method(const std::string& name, CollisionMethod* out) {
-  constexpr CollisionMethod kAll[] = {CollisionMethod::exact, CollisionMethod::paper};
+  constexpr CollisionMethod kAll[] = {CollisionMethod::exact, CollisionMethod::paper,
+                                      CollisionMethod::extrapolation};
   return parse_name(name, kAll, out);
 }
 
@@ -243,11 +245,13 @@ Validation BallBallParams::validate() const {
 }
 
 Validation CollisionOptions::validate() const {
-  if (method != CollisionMethod::exact && method != CollisionMethod::paper)
-    return invalid({"method"}, "must be exact or paper", static_cast<double>(method));
+  if (method != CollisionMethod::exact && method != CollisionMethod::paper &&
+      method != CollisionMethod::extrapolation)
+    return invalid({"method"}, "must be exact, extrapolation or paper",
+                   static_cast<double>(method));
   if (method == CollisionMethod::paper && paper_steps < 1)
     return invalid({"paper_steps"}, "must be at least 1", paper_steps);
-  if (method == CollisionMethod::exact) {
+  if (method != CollisionMethod::paper) {
     if (!std::isfinite(tolerance) || !(tolerance >= 1e-15) || !(tolerance <= 1e-2))
       return invalid({"tolerance"}, "must lie in [1e-15, 1e-2]", tolerance);
     if (max_steps < 1) return invalid({"max_steps"}, "must be at least 1", max_steps);
@@ -282,10 +286,16 @@ CollisionResult resolve_collision(const BallBallParams& params, const BallState&
   };
   const detail::ScaledCollision collision{params.mu_ball, params.mu_table, params.restitution,
                                           scaled(ball_i), scaled(ball_j)};
-  const detail::CollisionOutcome out =
-      options.method == CollisionMethod::paper
-          ? detail::collide_paper(collision, options.paper_steps)
-          : detail::collide_exact(collision, options.tolerance, options.max_steps);
+  detail::CollisionOutcome out;
+  switch (options.method) {
+    case CollisionMethod::paper: out = detail::collide_paper(collision, options.paper_steps); break;
+    case CollisionMethod::extrapolation:
+      out = detail::collide_exact(collision, options.tolerance, options.max_steps);
+      break;
+    case CollisionMethod::exact:
+      out = detail::collide_taylor(collision, options.tolerance, options.max_steps);
+      break;
+  }
   CollisionResult r = to_result(params, out, v);
   r.method_used = options.method;
   return r;

@@ -122,6 +122,7 @@ struct CollisionOutcome {
   }
 };
 
+CollisionOutcome collide_taylor(const ScaledCollision& collision, double tolerance, int max_steps);
 CollisionOutcome collide_exact(const ScaledCollision& collision, double tolerance, int max_steps);
 CollisionOutcome collide_paper(const ScaledCollision& collision, int steps);
 

@@ -77,4 +77,56 @@ inline int roots_in(const double* c, int degree, double lo, double hi, double* o
   return n;
 }
 
+// Series polynomials (the Taylor methods' steps): degree below kMaxSeriesTerms.
+constexpr int kMaxSeriesTerms = 32;
+
+// The polynomial c[0..degree] at h, as four interleaved Horner chains in h^4 (the
+// coefficients of each residue of the power mod 4): a quarter of Horner's chain of
+// dependent multiply-adds.
+inline double poly_at(const double* c, int degree, double h) {
+  const double h2 = h * h, h4 = h2 * h2;
+  const int top = degree / 4;
+  double a0 = c[4 * top];
+  double a1 = 4 * top + 1 <= degree ? c[4 * top + 1] : 0.0;
+  double a2 = 4 * top + 2 <= degree ? c[4 * top + 2] : 0.0;
+  double a3 = 4 * top + 3 <= degree ? c[4 * top + 3] : 0.0;
+  for (int i = top - 1; i >= 0; --i) {
+    a0 = a0 * h4 + c[4 * i];
+    a1 = a1 * h4 + c[4 * i + 1];
+    a2 = a2 * h4 + c[4 * i + 2];
+    a3 = a3 * h4 + c[4 * i + 3];
+  }
+  return (a0 + h * a1) + h2 * (a2 + h * a3);
+}
+
+// A root in (0, h] of the polynomial c with c(0) > 0 >= c(h), to 1e-15 of h (the
+// state moves by less than that fraction of the step): Newton steps kept inside the
+// bracket, the secant of the bracket where they leave it.
+inline double root_in(const double* c, int degree, double h) {
+  double slope_c[kMaxSeriesTerms];
+  for (int j = 1; j <= degree; ++j) slope_c[j - 1] = j * c[j];
+  double lo = 0.0, hi = h, f_lo = c[0], f_hi = poly_at(c, degree, h);
+  if (!(f_hi < f_lo)) return hi;
+  double x = hi * f_lo / (f_lo - f_hi);
+  const double enough = 1e-15 * h;
+  for (int iter = 0; iter < 60; ++iter) {
+    const double f = poly_at(c, degree, x);
+    if (f == 0.0) return x;
+    if (f > 0.0) {
+      lo = x;
+      f_lo = f;
+    } else {
+      hi = x;
+      f_hi = f;
+    }
+    double next = x - f / poly_at(slope_c, degree - 1, x);
+    if (std::abs(next - x) <= enough) return std::clamp(next, lo, hi);
+    if (!(next > lo && next < hi)) next = lo + (hi - lo) * f_lo / (f_lo - f_hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (hi - lo <= enough) return next;
+    x = next;
+  }
+  return hi;
+}
+
 }  // namespace cueplan::physics::detail

@@ -31,8 +31,10 @@ enum class BallFriction {
 
 // How the mathavan_2014 model is resolved.
 enum class CollisionMethod {
-  exact,  // adaptive extrapolation integrator in the normal impulse, landing on its events
-  paper,  // the same equations in N fixed steps of the normal impulse
+  exact,          // Taylor series in a regularised variable, landing on its events
+  paper,          // the same equations in N fixed steps of the normal impulse
+  extrapolation,  // adaptive extrapolation integrator in the normal impulse: a second,
+                  // independent exact method (the `exact` before 2026-12-02)
 };
 
 const char* to_string(BallModel model);
@@ -63,9 +65,9 @@ struct BallBallParams {
 struct CollisionOptions {
   CollisionMethod method = CollisionMethod::exact;
   int paper_steps = 5000;    // paper: N, with dP = (1 + e_b) M a0 / (2 N)
-  double tolerance = 1e-12;  // exact: local error per step, relative to the speed scale
-                             // max(|v_i|, |v_j|); in [1e-15, 1e-2]
-  int max_steps = 10000;     // exact: bound on accepted plus rejected steps, >= 1
+  double tolerance = 1e-12;  // exact, extrapolation: local error per step, relative to the
+                             // speed scale max(|v_i|, |v_j|); in [1e-15, 1e-2]
+  int max_steps = 10000;     // exact, extrapolation: bound on the steps, >= 1
 
   // Empty when usable; otherwise the broken rule, naming a member above.
   Validation validate() const;
@@ -79,7 +81,7 @@ enum class CollisionStatus {
 const char* to_string(CollisionStatus status);
 inline bool usable(CollisionStatus status) { return status == CollisionStatus::ok; }
 
-// Where the friction changes during a mathavan_2014 collision (exact method).
+// Where the friction changes during a mathavan_2014 collision (exact and extrapolation).
 enum class CollisionEvent : unsigned char {
   balls_geared,          // the slip between the balls reached zero: no friction from here on
   cloth_i_through_zero,  // ball i, pressed into the cloth, had its cloth slip pass zero
