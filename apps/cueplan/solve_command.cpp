@@ -39,6 +39,7 @@ std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) 
 }
 
 std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) {
+  if (!problem.has_target) return "none: a pure pot has no target";
   if (!std::isfinite(p.miss_distance)) return "none: the ball did not come to rest on the table";
   const bool inside = p.miss_distance <= problem.tolerance;
   return fmt::format("{:.3g} mm", 1000.0 * p.miss_distance) + " (tolerance " +
@@ -50,7 +51,8 @@ std::string success_text(const plan::PlannerOptions& options, const plan::Succes
   if (options.robustness_samples == 0) return "not estimated (--samples 0)";
   const plan::Estimate& e = success.both;
   std::string text = estimate_text(e) + " of " + std::to_string(e.samples) +
-                     " noisy strokes succeed (noise: " + noise_text(options.noise) + ")";
+                     " noisy strokes succeed" + pot_success_words(success) +
+                     " (noise: " + noise_text(options.noise) + ")";
   if (e.samples < options.robustness_samples)
     text += fmt::format("; cut short at {} of {} strokes by the time budget or by the "
                         "ranking, which stops sampling strokes that are measurably worse",
@@ -88,8 +90,14 @@ void write_text(std::ostream& out, const prob::Problem& problem,
   line("stroke", plan::describe_stroke(s));
   line("tip offset", tip_offset_text(s, problem.limits));
   line("landing", landing_text(b));
-  line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
-                     ", tolerance " + number(problem.tolerance, "m"));
+  if (b.pot)
+    for (const auto& [label, text] : pot_lines(*b.pot)) line(label, text);
+  if (problem.has_target)
+    line("target", "x = " + number(problem.target.x, "m") + ", y = " +
+                       number(problem.target.y, "m") + ", tolerance " +
+                       number(problem.tolerance, "m"));
+  else
+    line("target", "none: a pure pot, the cue ball may stop anywhere");
   line("miss distance", miss_text(problem, b));
   line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
@@ -174,7 +182,7 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
   for (const plan::PlannedShot& a : r.alternatives)
     alternatives.push_back(planned_json(problem, a, options.enforce_rigid_limit));
   j["alternatives"] = alternatives;
-  j["target"] = point_json(problem.target);
+  j["target"] = problem.has_target ? point_json(problem.target) : ordered_json();
   j["tolerance"] = problem.tolerance;
   j["cue_ball"] = point_json(problem.cue_ball);
   j["options"] = {{"global", plan::to_string(options.global)},

@@ -967,7 +967,7 @@ TableMarkings markings_for(const phys::Scene& scene) {
 TableScene problem_table(const problems::Problem& problem) {
   TableScene t;
   t.scene = problem.scene;
-  t.target = TargetZone{problem.target, problem.tolerance};
+  if (problem.has_target) t.target = TargetZone{problem.target, problem.tolerance};
   t.balls.push_back({"cue ball", *ball_colour("cue ball"), problem.cue_ball, {}});
   for (size_t i = 0; i < problem.scene.obstacles.size(); ++i)
     t.balls.push_back(

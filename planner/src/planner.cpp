@@ -105,9 +105,20 @@ class NominalObjective {
         enforce_rigid_limit_(enforce_rigid_limit), record_families_(record_families) {}
 
   double operator()(const double* u) {
-    const physics::Shot shot = space_.shot(u);
-    const physics::ShotResult r = task_.simulate(shot, simulation_);
-    ++evaluations_;
+    physics::Shot shot = space_.shot(u);
+    physics::ShotResult r;
+    if (task_.pot_aim) {
+      // A pot: the aim is solved for this speed and spin, from the last stroke's
+      // allowance for throw (the search moves in small steps).
+      detail::PotAim::Aimed aimed = task_.pot_aim->aim(task_, shot, simulation_, offset_hint_);
+      evaluations_ += aimed.simulations;
+      shot = aimed.shot;
+      r = std::move(aimed.result);
+      if (aimed.found) offset_hint_ = detail::wrap_degrees(shot.aim_deg - task_.pot_aim->ghost_aim_deg());
+    } else {
+      r = task_.simulate(shot, simulation_);
+      ++evaluations_;
+    }
     const double f = detail::shot_score(task_.problem, r, enforce_rigid_limit_);
     last_ = {f, r.final_position, r.status == physics::ShotStatus::rest};
     if (f < best_.score) best_ = {shot, f};
@@ -120,6 +131,7 @@ class NominalObjective {
   }
 
   int evaluations() const { return evaluations_; }
+  const int* simulations_counter() const { return &evaluations_; }
   const Candidate& best() const { return best_; }
   // The stroke last scored: its score and where it stopped.
   const detail::Landing& last() const { return last_; }
@@ -139,6 +151,7 @@ class NominalObjective {
   bool enforce_rigid_limit_;
   bool record_families_;
   int evaluations_ = 0;
+  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim (deg)
   std::vector<double> best_history_;  // best score after each evaluation
   Candidate best_;
   detail::Landing last_;
@@ -156,9 +169,18 @@ class RobustObjective {
         draws_(draws) {}
 
   double operator()(const double* u) {
-    const physics::Shot shot = space_.shot(u);
-    const physics::ShotResult r = task_.simulate(shot, simulation_);
-    ++simulations_;
+    physics::Shot shot = space_.shot(u);
+    physics::ShotResult r;
+    if (task_.pot_aim) {
+      detail::PotAim::Aimed aimed = task_.pot_aim->aim(task_, shot, simulation_, offset_hint_);
+      simulations_ += aimed.simulations;
+      shot = aimed.shot;
+      r = std::move(aimed.result);
+      if (aimed.found) offset_hint_ = detail::wrap_degrees(shot.aim_deg - task_.pot_aim->ghost_aim_deg());
+    } else {
+      r = task_.simulate(shot, simulation_);
+      ++simulations_;
+    }
     const double nominal = detail::shot_score(task_.problem, r, options_.enforce_rigid_limit);
     const double tol = task_.problem.tolerance;
     const double outside = std::max(0.0, nominal - 0.8 * tol) / tol;
@@ -182,6 +204,7 @@ class RobustObjective {
   const PlannerOptions& options_;
   const std::vector<detail::NoiseDraw>& draws_;
   int simulations_ = 0;
+  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim (deg)
   double best_score_ = kInf;
   physics::Shot best_;
 };
@@ -204,12 +227,17 @@ Polish polish(const Task& task, const PlannerOptions& options,
               std::optional<double> held_sidespin_k = std::nullopt) {
   const problems::Problem& problem = task.problem;
   // Centre a free aim on the start, so the polish never meets the seam at +-180.
-  const SearchSpace space(problem.limits, start.aim_deg, held_sidespin_k);
+  const SearchSpace space(problem.limits, start.aim_deg, held_sidespin_k, task.pot_aim.has_value());
   NominalObjective objective(task, space, simulation, options.enforce_rigid_limit, false);
   std::vector<double> x = space.point(start);
   StageSettings s;
   s.algorithm = detail::nlopt_local(options.local);
   s.max_evaluations = std::max(1, max_evaluations);
+  if (task.pot_aim) {
+    // A pot's call costs the few simulations of its aim root: they are the budget.
+    s.simulations = objective.simulations_counter();
+    s.max_simulations = std::max(1, max_evaluations);
+  }
   s.max_time_s = max_time_s;
   s.stop_value = kPolishStop * problem.tolerance;
   s.x_tolerance = kXTolerance;
@@ -260,7 +288,7 @@ class Planning {
       simplify_stage(task);
       rank_stage(task);
       robust_stage(task);
-      report_stage();
+      report_stage(task);
     }
     result_.time_s = std::chrono::duration<double>(Clock::now() - started_).count();
     return std::move(result_);
@@ -292,6 +320,13 @@ class Planning {
       result_.error = std::move(e);
       return false;
     }
+    if (const std::optional<problems::PotScreen> screen = problems::screened_pot(problem_)) {
+      result_.status = PlanStatus::unreachable;
+      result_.message = "Unreachable: " + screen->reason +
+                        " (pots off cushions, kisses and plants are not planned).";
+      unreachable_ = true;
+      return false;
+    }
     sim_ = options_.simulation;
     sim_.record_path = false;
     // The search's own copy cuts strokes that run on around the table short.
@@ -302,14 +337,15 @@ class Planning {
 
   // 2. Global stage over the whole stroke space, remembering every family's best.
   void global_stage(const Task& task) {
-    const SearchSpace space(problem_.limits);
+    const SearchSpace space(problem_.limits, 0.0, std::nullopt, task.pot_aim.has_value());
     NominalObjective global(task, space, search_sim_, options_.enforce_rigid_limit, true);
     const int budget =
         std::max(1, static_cast<int>(options_.global_share * options_.max_evaluations));
     if (options_.global == GlobalMethod::ompl_kpiece1) {
       detail::LandingSearch s;
       s.dimension = space.dimension();
-      s.aim_coordinate = problem_.limits.aim.mode == problems::AimMode::free ? 1 : -1;
+      s.aim_coordinate =
+          problem_.limits.aim.mode == problems::AimMode::free && space.aim_searched() ? 1 : -1;
       s.max_evaluations = budget;
       s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
       s.goal_score = problem_.tolerance;  // a stroke in the zone: the polish takes it from there
@@ -325,6 +361,10 @@ class Planning {
       StageSettings s;
       s.algorithm = detail::nlopt_global(options_.global);
       s.max_evaluations = budget;
+      if (task.pot_aim) {
+        s.simulations = global.simulations_counter();
+        s.max_simulations = budget;
+      }
       s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
       s.inner = detail::nlopt_local(options_.local);
       s.inner_max_evaluations = std::max(20, s.max_evaluations / 10);
@@ -541,6 +581,14 @@ class Planning {
         [&](size_t j, unsigned) {
           physics::Shot shot = finals_[parents[j]].shot.shot;
           shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
+          if (task.pot_aim) {
+            // Side changes the throw: the aim is solved again for the new spin.
+            const detail::PotAim::Aimed aimed = task.pot_aim->aim(
+                task, shot, report_sim(),
+                detail::wrap_degrees(shot.aim_deg - task.pot_aim->ghost_aim_deg()));
+            simulations[j] += aimed.simulations;
+            shot = aimed.shot;
+          }
           Final f = describe_shot(task, shot, &simulations[j]);
           if (!f.shot.solves && refine_seconds_left() > 0.0)
             f = polished_and_described(task, shot, kSimplifyEvaluations,
@@ -654,7 +702,8 @@ class Planning {
         static_cast<size_t>(n), physics::thread_count(options_.threads, n),
         [&](size_t i, unsigned) {
           const physics::Shot& start = finals_[i].shot.shot;
-          const SearchSpace local(problem_.limits, start.aim_deg);
+          const SearchSpace local(problem_.limits, start.aim_deg, std::nullopt,
+                                  task.pot_aim.has_value());
           RobustObjective objective(task, local, search_sim_, options_, draws);
           std::vector<double> x = local.point(start);
           StageSettings s;
@@ -692,7 +741,7 @@ class Planning {
   }
 
   // 8. Status and the sentence that explains it.
-  void report_stage() {
+  void report_stage(const Task& task) {
     PlanResult& result = result_;
     const double tol = problem_.tolerance;
     if (finals_.empty()) {
@@ -705,9 +754,31 @@ class Planning {
     }
     result.best = finals_.front().shot;
     for (size_t i = 1; i < finals_.size(); ++i) result.alternatives.push_back(finals_[i].shot);
+    if (task.pot_aim) {
+      // The pot of each reported stroke in a player's terms (a few simulations each).
+      std::vector<PlannedShot*> reported{&result.best};
+      for (PlannedShot& a : result.alternatives) reported.push_back(&a);
+      for (PlannedShot* p : reported) {
+        const physics::ShotResult r = task.simulate(p->shot, report_sim());
+        ++result.evaluations;
+        p->pot = detail::pot_report(task, *task.pot_aim, p->shot, r, report_sim(),
+                                    &result.evaluations);
+      }
+    }
     const PlannedShot& best = result.best;
     std::string where = fmt::format("{} ({}) stops {} from the target (tolerance {})", best.family,
                                     describe_stroke(best.shot), mm(best.miss_distance), mm(tol));
+    if (problem_.pot) {
+      const std::string pot = fmt::format("{} ({}) {} {} in the {} pocket", best.family,
+                                          describe_stroke(best.shot),
+                                          best.pot && best.pot->made ? "pots" : "does not pot",
+                                          problem_.pot->ball,
+                                          problems::pocket_name(problem_.scene, problem_.pot->pocket));
+      where = problem_.has_target
+                  ? fmt::format("{} and stops {} from the target (tolerance {})", pot,
+                                mm(best.miss_distance), mm(tol))
+                  : pot;
+    }
     const int searched = std::min<int>(options_.local_starts, static_cast<int>(starts_.size()));
     if (best.solves) {
       result.status = PlanStatus::solved;
@@ -718,6 +789,10 @@ class Planning {
             " and succeeds in {:.0f} % of strokes with a player's error (95 % interval {:.0f}-{:.0f} "
             "%)",
             100.0 * e.p, 100.0 * e.low, 100.0 * e.high);
+      if (e.samples > 0 && best.success.pot && problem_.has_target)
+        result.message += fmt::format("; the pot alone {:.0f} % ({:.0f}-{:.0f} %)",
+                                      100.0 * best.success.pot->p, 100.0 * best.success.pot->low,
+                                      100.0 * best.success.pot->high);
       result.message += ".";
       if (!result.alternatives.empty())
         result.message += fmt::format(" {} other way{} found.", result.alternatives.size(),
@@ -791,6 +866,7 @@ class Planning {
   int next_id_ = 0;  // Final::id of the next shot described for ranking
   detail::NoiseStream draws_{options_.seed};  // the common draws of every success estimate
   bool any_solved_ = false;
+  bool unreachable_ = false;
   int robust_improved_ = 0;
 };
 

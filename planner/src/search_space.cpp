@@ -64,7 +64,7 @@ double wrap_degrees(double deg) {
 }
 
 SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg,
-                         std::optional<double> held_sidespin_k)
+                         std::optional<double> held_sidespin_k, bool aim_solved)
     : limits_(limits), held_sidespin_(held_sidespin_k) {
   if (held_sidespin_) {
     held_sidespin_ = std::clamp(*held_sidespin_, -limits.spin_max, limits.spin_max);
@@ -84,6 +84,10 @@ SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg,
       aim_lo_ = limits.aim.lo_deg;
       aim_hi_ = limits.aim.hi_deg;
       break;
+  }
+  if (aim_solved) {
+    aim_lo_ = aim_hi_ = 0.0;
+    aim_searched_ = false;
   }
 }
 

@@ -30,8 +30,11 @@ class SearchSpace {
   // `aim_centre_deg` matters for a free aim only: the searched turn is centred there.
   // `held_sidespin_k` (|k_S| <= spin_max) fixes the sidespin and leaves the topspin
   // searched within the spin limit.
+  // `aim_solved`: the aim is no coordinate (a pot's aim is solved for each stroke,
+  // PotAim); shot() leaves it at 0 for the caller to set.
   explicit SearchSpace(const problems::Limits& limits, double aim_centre_deg = 0.0,
-                       std::optional<double> held_sidespin_k = std::nullopt);
+                       std::optional<double> held_sidespin_k = std::nullopt,
+                       bool aim_solved = false);
 
   int dimension() const { return (aim_searched_ ? 2 : 1) + (held_sidespin_ ? 1 : 2); }
   bool aim_searched() const { return aim_searched_; }
