@@ -110,7 +110,9 @@ class NominalObjective {
     if (task_.pot_aim) {
       // A pot: the aim is solved for this speed and spin, from the last stroke's
       // allowance for throw (the search moves in small steps).
-      detail::PotAim::Aimed aimed = task_.pot_aim->aim(task_, shot, simulation_, offset_hint_);
+      detail::PotAim::Aimed aimed =
+          task_.pot_aim->aim(task_, shot, simulation_, offset_hint_,
+                             space_.pot_offset(u) * task_.pot_aim->lateral_reach());
       evaluations_ += aimed.simulations;
       shot = aimed.shot;
       r = std::move(aimed.result);
@@ -172,7 +174,9 @@ class RobustObjective {
     physics::Shot shot = space_.shot(u);
     physics::ShotResult r;
     if (task_.pot_aim) {
-      detail::PotAim::Aimed aimed = task_.pot_aim->aim(task_, shot, simulation_, offset_hint_);
+      detail::PotAim::Aimed aimed =
+          task_.pot_aim->aim(task_, shot, simulation_, offset_hint_,
+                             space_.pot_offset(u) * task_.pot_aim->lateral_reach());
       simulations_ += aimed.simulations;
       shot = aimed.shot;
       r = std::move(aimed.result);
@@ -209,6 +213,15 @@ class RobustObjective {
   physics::Shot best_;
 };
 
+// Where across the pocket `shot` sends the pot's ball, as SearchSpace::pot_offset
+// counts it (one simulation); 0 without a pot.
+double start_pot_offset(const Task& task, const physics::Shot& shot,
+                        const physics::SimulationOptions& simulation) {
+  if (!task.pot_aim) return 0.0;
+  const std::optional<double> lateral = task.pot_aim->lateral_of(task.simulate(shot, simulation));
+  return lateral ? std::clamp(*lateral / task.pot_aim->lateral_reach(), -1.0, 1.0) : 0.0;
+}
+
 // One local polish and how it ended.
 struct Polish {
   Candidate best;
@@ -229,7 +242,7 @@ Polish polish(const Task& task, const PlannerOptions& options,
   // Centre a free aim on the start, so the polish never meets the seam at +-180.
   const SearchSpace space(problem.limits, start.aim_deg, held_sidespin_k, task.pot_aim.has_value());
   NominalObjective objective(task, space, simulation, options.enforce_rigid_limit, false);
-  std::vector<double> x = space.point(start);
+  std::vector<double> x = space.point(start, start_pot_offset(task, start, simulation));
   StageSettings s;
   s.algorithm = detail::nlopt_local(options.local);
   s.max_evaluations = std::max(1, max_evaluations);
@@ -247,9 +260,9 @@ Polish polish(const Task& task, const PlannerOptions& options,
   Polish p;
   p.code = detail::run_stage(s, &x, &objective);
   p.best = objective.best();
-  p.evaluations = objective.evaluations();
+  p.evaluations = objective.evaluations() + (task.pot_aim ? 1 : 0);  // and start_pot_offset's
   p.stalled = objective.stalled(problem.tolerance);
-  if (p.evaluations == 0) p.best = {start, kInf};
+  if (objective.evaluations() == 0) p.best = {start, kInf};
   return p;
 }
 
@@ -281,7 +294,7 @@ class Planning {
 
   PlanResult run() {
     if (check()) {
-      const Task task(problem_);
+      const Task task(problem_, options_.solve_pot_aim);
       global_stage(task);
       polish_stage(task);
       verify_stage(task);
@@ -583,10 +596,12 @@ class Planning {
           shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
           if (task.pot_aim) {
             // Side changes the throw: the aim is solved again for the new spin.
+            const double lateral =
+                start_pot_offset(task, shot, report_sim()) * task.pot_aim->lateral_reach();
             const detail::PotAim::Aimed aimed = task.pot_aim->aim(
                 task, shot, report_sim(),
-                detail::wrap_degrees(shot.aim_deg - task.pot_aim->ghost_aim_deg()));
-            simulations[j] += aimed.simulations;
+                detail::wrap_degrees(shot.aim_deg - task.pot_aim->ghost_aim_deg()), lateral);
+            simulations[j] += aimed.simulations + 1;
             shot = aimed.shot;
           }
           Final f = describe_shot(task, shot, &simulations[j]);
@@ -705,7 +720,7 @@ class Planning {
           const SearchSpace local(problem_.limits, start.aim_deg, std::nullopt,
                                   task.pot_aim.has_value());
           RobustObjective objective(task, local, search_sim_, options_, draws);
-          std::vector<double> x = local.point(start);
+          std::vector<double> x = local.point(start, start_pot_offset(task, start, search_sim_));
           StageSettings s;
           s.algorithm = detail::nlopt_local(options_.local);
           s.max_evaluations = calls_each;

@@ -20,6 +20,10 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 constexpr double kAimTolerance = 0.005;
 constexpr int kAimIterations = 8;
 constexpr double kMaxAimStep = 2.0;  // deg: a Newton step is never larger
+// The search may aim the pot's ball this share of the capture radius either side of the
+// pocket's centre: a pot played off-centre leaves the cue ball elsewhere, and its
+// position may need it.
+constexpr double kPotWindow = 0.6;
 
 Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
@@ -112,6 +116,8 @@ PotAim::PotAim(const problems::Problem& problem) : problem_(problem) {
     if (scene.balls[i].name == pot_ball_) pot_index_ = static_cast<int>(i) + 1;
   if (first != pot_ball_) chain_.push_back(centre(first));
   chain_.push_back(centre(pot_ball_));
+  const Vec2 line = unit(sub(pocket_, chain_.back()));
+  across_ = {-line.y, line.x};
   // Ghost balls from the pocket back to the cue ball.
   const double two_r = 2.0 * scene.radius();
   Vec2 aim_point = pocket_;
@@ -135,8 +141,20 @@ std::optional<double> PotAim::geometric_direction(double aim_deg) const {
   return dir;
 }
 
+double PotAim::lateral_reach() const { return kPotWindow * capture_; }
+
+std::optional<double> PotAim::lateral_of(const physics::ShotResult& result) const {
+  if (pot_index_ <= 0 || pot_index_ >= static_cast<int>(result.balls.size())) return std::nullopt;
+  const physics::ShotEvent* hit = first_contact_of(result.balls[static_cast<size_t>(pot_index_)]);
+  if (hit == nullptr) return std::nullopt;
+  const Vec2 to_pocket = sub(pocket_, hit->position);
+  if (!(norm(to_pocket) > 0.0)) return std::nullopt;
+  const Line line = line_toward(problem_.scene, *hit, pocket_, unit(to_pocket));
+  return -cross(line.direction, sub(pocket_, line.point));
+}
+
 std::optional<double> PotAim::direction_error(const physics::ShotResult& result,
-                                              double* margin_m) const {
+                                              double* margin_m, double lateral_m) const {
   if (pot_index_ <= 0 || pot_index_ >= static_cast<int>(result.balls.size())) return std::nullopt;
   const physics::ShotEvent* hit = first_contact_of(result.balls[static_cast<size_t>(pot_index_)]);
   if (hit == nullptr) return std::nullopt;
@@ -147,13 +165,18 @@ std::optional<double> PotAim::direction_error(const physics::ShotResult& result,
   // Where the pocket's centre lies from the ball's line: > 0 to its left.
   const double lateral = cross(line.direction, sub(pocket_, line.point));
   if (margin_m) *margin_m = capture_ - std::abs(lateral);
-  if (dot(line.direction, to_pocket) <= 0.0) return angle_between(unit(sub(line.point, hit->position)), to_pocket);
-  return std::asin(std::clamp(lateral / distance, -1.0, 1.0)) * kDeg;
+  // The point aimed at, `lateral_m` across the pocket.
+  const Vec2 aim_point{pocket_.x + lateral_m * across_.x, pocket_.y + lateral_m * across_.y};
+  const Vec2 to_aim = sub(aim_point, hit->position);
+  if (dot(line.direction, to_aim) <= 0.0)
+    return angle_between(unit(sub(line.point, hit->position)), to_aim);
+  const double off = cross(line.direction, sub(aim_point, line.point));
+  return std::asin(std::clamp(off / norm(to_aim), -1.0, 1.0)) * kDeg;
 }
 
 PotAim::Aimed PotAim::aim(const Task& task, const physics::Shot& shot,
                           const physics::SimulationOptions& simulation,
-                          double offset_hint_deg) const {
+                          double offset_hint_deg, double lateral_m) const {
   Aimed out;
   const auto play = [&](double aim_deg) {
     physics::Shot s = shot;
@@ -161,7 +184,7 @@ PotAim::Aimed PotAim::aim(const Task& task, const physics::Shot& shot,
     out.shot = s;
     out.result = task.simulate(s, simulation);
     ++out.simulations;
-    return direction_error(out.result);
+    return direction_error(out.result, nullptr, lateral_m);
   };
   // The geometric slope of the pot's ball's direction in the aim (deg per deg).
   const auto gain = [&](double aim_deg) {

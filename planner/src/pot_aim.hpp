@@ -38,8 +38,15 @@ class PotAim {
   // given, gets how far inside the capture circle the ball's centre passes (its
   // capture radius less the pocket centre's distance from the ball's line; negative
   // when it passes outside).
+  // `lateral_m` moves the point aimed at across the pocket: that far (m) to the left
+  // of its centre as seen from the pot's ball.
   std::optional<double> direction_error(const physics::ShotResult& result,
-                                        double* margin_m = nullptr) const;
+                                        double* margin_m = nullptr, double lateral_m = 0.0) const;
+  // How far (m) to the left of the pocket's centre the pot's ball's line passes, as
+  // seen from the ball; empty when it was not struck.
+  std::optional<double> lateral_of(const physics::ShotResult& result) const;
+  // The most lateral_m the search asks for: kPotWindow of the capture radius.
+  double lateral_reach() const;
 
   struct Aimed {
     physics::Shot shot;          // with the aim found
@@ -54,7 +61,8 @@ class PotAim {
   // pocket's centre. Not found when its line cannot be brought there (the cue ball
   // misses, or strikes another ball first).
   Aimed aim(const Task& task, const physics::Shot& shot,
-            const physics::SimulationOptions& simulation, double offset_hint_deg = 0.0) const;
+            const physics::SimulationOptions& simulation, double offset_hint_deg = 0.0,
+            double lateral_m = 0.0) const;
 
   const std::string& pot_ball() const { return pot_ball_; }
 
@@ -64,6 +72,7 @@ class PotAim {
   int pot_index_ = 0;  // index into ShotResult::balls
   std::vector<physics::Vec2> chain_;  // centres of the balls the cue ball drives, in order
   physics::Vec2 pocket_;
+  physics::Vec2 across_;  // unit, to the left of the line from the pot's ball to the pocket
   double capture_ = 0.0;
   double ghost_aim_deg_ = 0.0;
 };

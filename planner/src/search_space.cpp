@@ -88,6 +88,7 @@ SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg,
   if (aim_solved) {
     aim_lo_ = aim_hi_ = 0.0;
     aim_searched_ = false;
+    aim_solved_ = true;
   }
 }
 
@@ -113,7 +114,11 @@ physics::Shot SearchSpace::shot(const double* u) const {
   return s;
 }
 
-std::vector<double> SearchSpace::point(const physics::Shot& shot) const {
+double SearchSpace::pot_offset(const double* u) const {
+  return aim_solved_ ? 2.0 * clamp01(u[dimension() - 1]) - 1.0 : 0.0;
+}
+
+std::vector<double> SearchSpace::point(const physics::Shot& shot, double pot_offset) const {
   std::vector<double> u;
   u.push_back(clamp01((shot.speed - limits_.speed_min) / (limits_.speed_max - limits_.speed_min)));
   if (aim_searched_) {
@@ -125,6 +130,7 @@ std::vector<double> SearchSpace::point(const physics::Shot& shot) const {
   if (held_sidespin_) {
     const double t = topspin_reach_ > 0.0 ? shot.topspin_k / topspin_reach_ : 0.0;
     u.push_back(clamp01(0.5 * (t + 1.0)));
+    if (aim_solved_) u.push_back(clamp01(0.5 * (pot_offset + 1.0)));
     return u;
   }
   double a, b;
@@ -134,6 +140,7 @@ std::vector<double> SearchSpace::point(const physics::Shot& shot) const {
                  shrink * shot.topspin_k / limits_.spin_max, &a, &b);
   u.push_back(clamp01(0.5 * (a + 1.0)));
   u.push_back(clamp01(0.5 * (b + 1.0)));
+  if (aim_solved_) u.push_back(clamp01(0.5 * (pot_offset + 1.0)));
   return u;
 }
 

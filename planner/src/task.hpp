@@ -13,8 +13,10 @@ namespace cueplan::planner::detail {
 struct Task {
   // `checked` must outlive the task; it is checked by the caller (plan(), plan_route(),
   // spin_map() run problems::validate before anything else).
-  explicit Task(const problems::Problem& checked) : problem(checked), scene(checked.scene) {
-    if (checked.pot) pot_aim.emplace(checked);
+  // `solve_pot_aim`: a pot problem's aim is solved (pot_aim), not searched.
+  explicit Task(const problems::Problem& checked, bool solve_pot_aim = true)
+      : problem(checked), scene(checked.scene) {
+    if (checked.pot && solve_pot_aim) pot_aim.emplace(checked);
   }
 
   // A stroke from the problem's cue ball.

@@ -121,6 +121,10 @@ struct PlannerOptions {
   // method moves out of the tolerance is polished again with it. Success
   // probabilities and the robust polish use `simulation` as it is (fast with a table).
   bool verify_exact = true;
+  // A pot problem's aim is solved for each speed and spin (the 1-D root near the
+  // ghost-ball line) and the search is over speed and spin; false searches the aim
+  // like any other coordinate (bench/README.md, "Pot and position", compares them).
+  bool solve_pot_aim = true;
 
   // Empty when usable; otherwise the first broken rule, fields named as these members
   // ({"max_evaluations"}, {"noise", "scale"}, {"simulation", "impact_accuracy"}).
@@ -246,6 +250,16 @@ struct KnownShotProblem {
 };
 std::vector<KnownShotProblem> known_shot_problems(int count, uint64_t seed,
                                                   const physics::SimulationOptions& simulation);
+
+// Pot problems whose answer is known, for tests and benchmarks: on a snooker table a
+// random cue-ball position, one object ball ("red") at a random place, and a random
+// stroke within the default limits aimed to strike it (cuts up to about 64 degrees)
+// that pots it directly (the red meets no cushion or other ball on its way in) and
+// cleanly and leaves the cue ball at rest after 0-3 cushions; the pot is
+// the red into the pocket it dropped in, the target where the cue ball stops
+// (tolerance 0.02 m), the cushion limits a pot's default [0, 3]. Deterministic for a seed.
+std::vector<KnownShotProblem> known_pot_problems(int count, uint64_t seed,
+                                                 const physics::SimulationOptions& simulation);
 
 // Problems whose feasible strokes are split into many small islands: a snooker table
 // with `obstacles` balls (1-30) at random places (not touching each other, the cushions
