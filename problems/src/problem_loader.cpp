@@ -281,7 +281,8 @@ Problem read_problem(const Field& document, const std::string& source) {
   problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m");
   // With a pot the target may be left out: a pure pot, the cue ball free to stop anywhere.
   if (root.find("target") || !root.find("pot"))
-    problem.target = read_position(root, "target", "where the cue ball should stop, [x, y] in m");
+    problem.target = read_position(
+        root, "target", "where the cue ball should stop, [x, y] in m (optional with a pot)");
   else
     problem.has_target = false;
   if (const std::optional<Field> f = root.find("tolerance"))
