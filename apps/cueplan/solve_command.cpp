@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -228,9 +229,9 @@ namespace {
 // ---------------------------------------------------------------------------
 // The drawing: the best path in full, the alternatives faint.
 
-draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
-                  const phys::SimulationOptions& search, bool faint) {
-  // Simulated as the reported outcome was: with the method that gave it.
+// The stroke simulated as the reported outcome was: with the method that gave it.
+phys::ShotResult drawn_result(const prob::Problem& problem, const plan::PlannedShot& p,
+                              const phys::SimulationOptions& search) {
   phys::SimulationOptions options = search;
   options.record_path = true;
   if (p.impact_method != phys::ImpactMethod::table &&
@@ -238,7 +239,12 @@ draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p
     options.impact_method = phys::ImpactMethod::exact;
     options.impact_accuracy = 1e-9;
   }
-  const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, p.shot, options);
+  return phys::simulate(problem.scene, problem.cue_ball, p.shot, options);
+}
+
+draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
+                        const phys::SimulationOptions& search, bool faint) {
+  const phys::ShotResult r = drawn_result(problem, p, search);
   return {r.path, r.events, faint};
 }
 
@@ -249,6 +255,16 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
   for (const plan::PlannedShot& a : r.alternatives)
     d.balls.front().paths.push_back(path_of(problem, a, options.simulation, true));
   d.balls.front().paths.push_back(path_of(problem, b, options.simulation, false));
+  // The object balls where they stand, and how the best stroke moves them (the pot's
+  // ball to its pocket).
+  const phys::ShotResult best = drawn_result(problem, b, options.simulation);
+  for (size_t k = 1; k < best.balls.size(); ++k) {
+    const phys::BallOutcome& ball = best.balls[k];
+    draw::DrawnBall drawn{ball.name, draw::ball_colour(ball.name).value_or(draw::Colour{0.85, 0.55, 0.2}),
+                          ball.start, {}};
+    if (!ball.path.empty()) drawn.paths.push_back({ball.path, ball.events, false});
+    d.balls.push_back(std::move(drawn));
+  }
   if (!r.alternatives.empty())
     d.faint_legend = std::to_string(r.alternatives.size()) +
                      (r.alternatives.size() == 1 ? " alternative stroke" : " alternative strokes");
@@ -277,6 +293,12 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
   if (options.robustness_samples > 0)
     outcome += "; " + fmt::format("{:.0f} %", 100.0 * b.success_probability) +
                " of noisy strokes succeed (noise \u00d7" + number(options.noise.scale) + ")";
+  if (b.pot)
+    outcome = fmt::format("{} {} in the {} pocket ({:.1f}\u00b0 cut, {} ball); ",
+                          b.pot->made ? "Pots" : "Misses", b.pot->ball, b.pot->pocket_name,
+                          b.pot->cut_deg, b.pot->thickness) +
+              static_cast<char>(std::tolower(static_cast<unsigned char>(outcome.front()))) +
+              outcome.substr(1);
   d.caption.push_back(outcome + ".");
   if (!r.alternatives.empty())
     d.caption.push_back(
