@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/spin_map.hpp"
 #include "cueplan/problems/problem.hpp"
 
 namespace cueplan::planner {
@@ -285,6 +286,28 @@ TEST(PotConditionsTest, EachBrokenConditionIsNamed) {
   EXPECT_EQ(verdict({3.0, -135.0, 1.2, 0.0}).failure, problems::Failure::cue_ball_pocketed);
   // A stroke outside the limits is judged first.
   EXPECT_EQ(verdict({9.0, -135.0, 0.0, 0.0}).failure, problems::Failure::outside_limits);
+}
+
+// On a pot problem the spin map solves each spin's aim: every cell said to pot pots when
+// struck at its aim, and a cell lands only if that stroke solves the problem.
+TEST(PotSpinMapTest, EachSpinsAimKeepsThePot) {
+  const problems::Problem p = shipped("pots/plant_two_balls.yaml");
+  SpinMapOptions o;
+  o.grid = 9;
+  const SpinMap map = spin_map(p, 2.978, 23.75, o);
+  ASSERT_FALSE(map.points.empty()) << map.message;
+  int potting = 0;
+  for (const SpinMapPoint& q : map.points) {
+    const physics::Shot shot{map.speed, q.aim_deg, q.topspin_k, q.sidespin_k};
+    const physics::ShotResult r = physics::simulate(p.scene, p.cue_ball, shot);
+    EXPECT_EQ(q.lands, problems::check_stroke(p, shot, r).solves());
+    if (!q.pots) continue;
+    ++potting;
+    EXPECT_TRUE(problems::makes_pot(p, r)) << q.topspin_k << ", " << q.sidespin_k;
+    EXPECT_NEAR(q.aim_deg, 23.75, 1.0);  // near the given aim: a few tenths for the throw
+  }
+  EXPECT_GT(potting, static_cast<int>(map.points.size()) / 2);
+  EXPECT_EQ(map.not_potting, static_cast<int>(map.points.size()) - potting);
 }
 
 }  // namespace
