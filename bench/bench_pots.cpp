@@ -21,6 +21,7 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "plan_stats.hpp"
 #include "table_cache.hpp"
 
 #ifndef CUEPLAN_PROBLEMS_DIR
@@ -30,21 +31,8 @@
 namespace {
 
 using namespace cueplan;
-
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const size_t i = static_cast<size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
-}
+using bench::percentile;
+using bench::thread_cpu_s;
 
 struct Tally {
   int solved = 0, runs = 0, unreachable = 0;

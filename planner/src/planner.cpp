@@ -94,6 +94,25 @@ struct Candidate {
   double score = kInf;
 };
 
+// The stroke at u of the unit cube played: *shot is it, *simulations counts what it cost.
+// A pot's aim is solved for the speed and spin at u (PotAim), from *offset_hint (the last
+// stroke's allowance for throw, updated: the search moves in small steps).
+physics::ShotResult play(const Task& task, const SearchSpace& space, const double* u,
+                         const physics::SimulationOptions& simulation, double* offset_hint,
+                         physics::Shot* shot, int* simulations) {
+  *shot = space.shot(u);
+  if (!task.pot_aim) {
+    ++*simulations;
+    return task.simulate(*shot, simulation);
+  }
+  detail::PotAim::Aimed aimed = task.pot_aim->aim(
+      task, *shot, simulation, *offset_hint, space.pot_offset(u) * task.pot_aim->lateral_reach());
+  *simulations += aimed.simulations;
+  *shot = aimed.shot;
+  if (aimed.found) *offset_hint = detail::wrap_degrees(shot->aim_deg - task.pot_aim->ghost_aim_deg());
+  return std::move(aimed.result);
+}
+
 // The nominal objective: simulate the stroke at u, score it, count it, and (in the
 // global stage) remember the best stroke of each family.
 class NominalObjective {
@@ -105,22 +124,8 @@ class NominalObjective {
         enforce_rigid_limit_(enforce_rigid_limit), record_families_(record_families) {}
 
   double operator()(const double* u) {
-    physics::Shot shot = space_.shot(u);
-    physics::ShotResult r;
-    if (task_.pot_aim) {
-      // A pot: the aim is solved for this speed and spin, from the last stroke's
-      // allowance for throw (the search moves in small steps).
-      detail::PotAim::Aimed aimed =
-          task_.pot_aim->aim(task_, shot, simulation_, offset_hint_,
-                             space_.pot_offset(u) * task_.pot_aim->lateral_reach());
-      evaluations_ += aimed.simulations;
-      shot = aimed.shot;
-      r = std::move(aimed.result);
-      if (aimed.found) offset_hint_ = detail::wrap_degrees(shot.aim_deg - task_.pot_aim->ghost_aim_deg());
-    } else {
-      r = task_.simulate(shot, simulation_);
-      ++evaluations_;
-    }
+    physics::Shot shot;
+    const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &evaluations_);
     const double f = detail::shot_score(task_.problem, r, enforce_rigid_limit_);
     last_ = {f, r.final_position, r.status == physics::ShotStatus::rest};
     if (f < best_.score) best_ = {shot, f};
@@ -171,20 +176,8 @@ class RobustObjective {
         draws_(draws) {}
 
   double operator()(const double* u) {
-    physics::Shot shot = space_.shot(u);
-    physics::ShotResult r;
-    if (task_.pot_aim) {
-      detail::PotAim::Aimed aimed =
-          task_.pot_aim->aim(task_, shot, simulation_, offset_hint_,
-                             space_.pot_offset(u) * task_.pot_aim->lateral_reach());
-      simulations_ += aimed.simulations;
-      shot = aimed.shot;
-      r = std::move(aimed.result);
-      if (aimed.found) offset_hint_ = detail::wrap_degrees(shot.aim_deg - task_.pot_aim->ghost_aim_deg());
-    } else {
-      r = task_.simulate(shot, simulation_);
-      ++simulations_;
-    }
+    physics::Shot shot;
+    const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &simulations_);
     const double nominal = detail::shot_score(task_.problem, r, options_.enforce_rigid_limit);
     const double tol = task_.problem.tolerance;
     const double outside = std::max(0.0, nominal - 0.8 * tol) / tol;

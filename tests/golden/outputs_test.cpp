@@ -100,14 +100,20 @@ void dump_planned(std::string& out, const std::string& label, const planner::Pla
                      s.success.both.samples, s.family, s.violations);
 }
 
+// A plan the budget ends, not the clock: the same on every machine.
+planner::PlannerOptions golden_plan_options() {
+  planner::PlannerOptions options;
+  options.max_evaluations = 800;
+  options.max_time_s = 600.0;
+  options.robustness_samples = 40;
+  options.threads = 2;
+  return options;
+}
+
 void dump_plans(std::string& out) {
   for (const char* name : {"one_rail_position.yaml", "near_pocket.yaml", "blocked_direct_route.yaml"}) {
     const problems::Problem p = load(name);
-    planner::PlannerOptions options;
-    options.max_evaluations = 800;
-    options.max_time_s = 600.0;
-    options.robustness_samples = 40;
-    options.threads = 2;
+    const planner::PlannerOptions options = golden_plan_options();
     const planner::PlanResult r = planner::plan(p, options);
     out += fmt::format("solve {}: {} evaluations {} local {} converged {} message '{}'\n", name,
                        planner::to_string(r.status), r.evaluations, r.local_searches,
@@ -121,11 +127,7 @@ void dump_plans(std::string& out) {
 void dump_pot_plans(std::string& out) {
   for (const char* name : {"pots/cut_middle_pocket.yaml", "pots/long_pot.yaml"}) {
     const problems::Problem p = load(name);
-    planner::PlannerOptions options;
-    options.max_evaluations = 800;
-    options.max_time_s = 600.0;
-    options.robustness_samples = 40;
-    options.threads = 2;
+    const planner::PlannerOptions options = golden_plan_options();
     const planner::PlanResult r = planner::plan(p, options);
     out += fmt::format("solve {}: {} evaluations {} local {} converged {}\n", name,
                        planner::to_string(r.status), r.evaluations, r.local_searches,
