@@ -333,8 +333,9 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   c.add_flag("--json", args_.json,
              "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
              "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
-             "success {position, both: {p, low, high, samples}}, evaluations, time_s, "
-             "alternatives (same shape), constraints, ...")
+             "success {pot (pot problems), position, both: {p, low, high, samples}}, pot {ball, "
+             "pocket, cut_deg, thickness, throw_deg, margin_m, aim_margin_deg, ...}, failure, "
+             "evaluations, time_s, alternatives (same shape), constraints, ...")
       ->group(output);
   c.add_option("--svg", args_.svg_file,
                "Also draw the plan: the table, the target zone, the best stroke's path and the "
@@ -344,8 +345,9 @@ SolveCommand::SolveCommand(CLI::App& parent) {
 
   c.footer(
       "Status: solved (exit 0); no_solution_found - the search converged everywhere it "
-      "looked without reaching the target, a strong hint but no proof - or budget_exhausted "
-      "(exit 1; the best stroke found is still reported); bad input exits 2.\n"
+      "looked without reaching the target, a strong hint but no proof - budget_exhausted, or "
+      "unreachable - a pot another ball screens, proved from the geometry (exit 1; the best "
+      "stroke found is still reported); bad input exits 2.\n"
       "Example: cueplan solve problems/one_rail_position.yaml --seed 7 --svg plan.svg");
 }
 
