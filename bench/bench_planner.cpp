@@ -41,6 +41,7 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "plan_stats.hpp"
 #include "table_cache.hpp"
 
 #ifndef CUEPLAN_PROBLEMS_DIR
@@ -50,6 +51,8 @@
 namespace {
 
 using namespace cueplan;
+using bench::percentile;
+using bench::thread_cpu_s;
 
 struct Case {
   std::string set;  // "shipped" or "generated"
@@ -78,15 +81,6 @@ struct Summary {
   std::vector<Run> runs;
   int max_evaluations = 0;
 };
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = q * static_cast<double>(v.size() - 1);
-  const size_t i = static_cast<size_t>(pos);
-  const double f = pos - static_cast<double>(i);
-  return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
-}
 
 struct Stats {
   double success = 0.0, shipped = 0.0, generated = 0.0, median_ms = 0.0, p95_ms = 0.0,
@@ -146,14 +140,6 @@ Stats stats(const std::vector<Run>& runs) {
   s.mean_evaluations /= n;
   s.mean_families /= n;
   return s;
-}
-
-// CPU time of the calling thread (s): on a machine shared with other work, the
-// steadier measure of what a plan costs.
-double thread_cpu_s() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 constexpr uint64_t kFreshSeed = 1000003;  // added to the plan's seed

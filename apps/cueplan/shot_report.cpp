@@ -64,6 +64,28 @@ std::vector<ConstraintRow> constraints(const prob::Problem& problem, const plan:
       : problem.scene.obstacles.empty() ? "no obstacle balls on this table"
                                         : "clears every obstacle ball");
 
+  // A pot problem's own conditions: the first contact and the pot.
+  using prob::Failure;
+  if (const std::string first = problem.required_first_contact(); !first.empty()) {
+    const bool ok = p.failure != Failure::first_contact;
+    rows.push_back({"first contact", "first_contact", ok ? "ok" : "broken",
+                    ok ? (p.failure == Failure::no_outcome || p.failure == Failure::obstacle ||
+                                  p.failure == Failure::cue_ball_pocketed
+                              ? "not judged: " + p.failure_reason
+                              : "the cue ball strikes " + first + " first")
+                       : p.failure_reason});
+  }
+  if (problem.pot) {
+    const bool foul = p.failure == Failure::pot_missed || p.failure == Failure::wrong_pocket ||
+                      p.failure == Failure::other_ball_pocketed;
+    const bool made = p.pot ? p.pot->made && p.failure != Failure::other_ball_pocketed : !foul;
+    const std::string pocket = prob::pocket_name(problem.scene, problem.pot->pocket);
+    rows.push_back({"pot", "pot", made ? "ok" : "broken",
+                    made ? problem.pot->ball + " drops in the " + pocket + " pocket, no other ball does"
+                    : foul ? p.failure_reason
+                           : problem.pot->ball + " does not drop in the " + pocket + " pocket"});
+  }
+
   const double limit = problem.scene.ball_and_cushion.rigid_speed_limit;
   std::string rigid = "max cushion normal speed " + number(p.max_cushion_normal_speed, "m/s");
   if (!p.rigid_limit_exceeded) {
@@ -115,6 +137,60 @@ ordered_json success_json(const plan::Success& s) {
   return j;
 }
 
+std::string pot_success_words(const plan::Success& s) {
+  if (!s.pot) return {};
+  return " (pot and position); the pot alone " + estimate_text(*s.pot) +
+         ", the position given the pot " + estimate_text(s.position) + " of " +
+         std::to_string(s.position.samples);
+}
+
+std::vector<std::pair<std::string, std::string>> pot_lines(const plan::PotReport& pot) {
+  std::vector<std::pair<std::string, std::string>> lines;
+  lines.emplace_back("pot", pot.ball + " into the " + pot.pocket_name + " pocket: " +
+                                (pot.made ? "made" : "missed") +
+                                (pot.striker.empty() || pot.striker == phys::kCueBallName
+                                     ? std::string()
+                                     : " (struck by " + pot.striker + ": a plant)"));
+  if (pot.thickness.empty()) return lines;  // never struck
+  const char* side = pot.cut_side > 0 ? "to the left" : pot.cut_side < 0 ? "to the right" : "straight on";
+  lines.emplace_back("cut", fmt::format("{:.1f} deg, {} ball ({} leaves {} of the {}'s path)",
+                                        pot.cut_deg, pot.thickness, pot.ball, side,
+                                        pot.striker == phys::kCueBallName ? "cue ball" : pot.striker));
+  const double allowance = pot.aim_allowance_deg;
+  lines.emplace_back(
+      "throw",
+      fmt::format("{:.2f} deg {} (the model's: {} leaves that far {} of the line of centres); "
+                  "the aim, {:.3f} deg {} of the ghost-ball line ({:.3f} deg), allows for it",
+                  std::abs(pot.throw_deg), pot.throw_deg >= 0.0 ? "counter-clockwise" : "clockwise",
+                  pot.ball, pot.throw_deg >= 0.0 ? "counter-clockwise" : "clockwise",
+                  std::abs(allowance), allowance >= 0.0 ? "counter-clockwise" : "clockwise",
+                  pot.ghost_aim_deg));
+  if (pot.made)
+    lines.emplace_back(
+        "pot margin",
+        fmt::format("{}'s centre passes {:.1f} mm inside the pocket's capture circle; an aim "
+                    "error of {:.3f} deg would miss",
+                    pot.ball, 1e3 * pot.margin_m, pot.aim_margin_deg));
+  return lines;
+}
+
+ordered_json pot_json(const plan::PotReport& pot) {
+  ordered_json j;
+  j["ball"] = pot.ball;
+  j["pocket"] = pot.pocket_name;
+  j["made"] = pot.made;
+  j["striker"] = pot.striker;
+  j["cut_deg"] = pot.cut_deg;
+  j["cut_side"] = pot.cut_side > 0 ? "left" : pot.cut_side < 0 ? "right" : "straight";
+  j["thickness"] = pot.thickness;
+  j["throw_deg"] = pot.throw_deg;
+  j["ghost_aim_deg"] = pot.ghost_aim_deg;
+  j["aim_allowance_deg"] = pot.aim_allowance_deg;
+  j["margin_m"] = pot.margin_m;
+  j["aim_margin_deg"] = pot.aim_margin_deg;
+  return j;
+}
+
 ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot& p,
                           bool enforce_rigid_limit) {
   ordered_json j;
@@ -128,8 +204,9 @@ ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot&
   j["outcome"] = phys::to_string(p.outcome);
   j["final_position"] = point_json(p.final_position);
   // null when the ball did not come to rest on the table (JSON has no infinity)
-  j["miss_distance"] =
-      std::isfinite(p.miss_distance) ? ordered_json(p.miss_distance) : ordered_json();
+  j["miss_distance"] = std::isfinite(p.miss_distance) && problem.has_target
+                           ? ordered_json(p.miss_distance)
+                           : ordered_json();
   j["success_probability"] = p.success_probability;
   j["success"] = success_json(p.success);
   j["solves"] = p.solves;
@@ -148,6 +225,8 @@ ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot&
   j["max_cushion_normal_speed"] = p.max_cushion_normal_speed;
   j["rigid_limit_exceeded"] = p.rigid_limit_exceeded;
   j["impact_method"] = phys::to_string(p.impact_method);
+  j["failure"] = {{"condition", prob::to_string(p.failure)}, {"reason", p.failure_reason}};
+  if (p.pot) j["pot"] = pot_json(*p.pot);
   return j;
 }
 

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cueplan/physics/shot.hpp"
@@ -38,12 +39,23 @@ std::string estimate_text(const planner::Estimate& e);
 nlohmann::ordered_json estimate_json(const planner::Estimate& e);
 // {pot (pot problems only), position, both}, each an estimate_json.
 nlohmann::ordered_json success_json(const planner::Success& s);
+// For a pot problem, the pot and the position apart: " (pot and position); the pot alone
+// P (95 % interval ...), the position given the pot P (...)"; empty without a pot.
+std::string pot_success_words(const planner::Success& s);
+
+// The pot of a planned stroke in a player's terms, as report lines (label, text): pot,
+// cut, throw, pot margin.
+std::vector<std::pair<std::string, std::string>> pot_lines(const planner::PotReport& pot);
+// {ball, pocket, made, striker, cut_deg, cut_side, thickness, throw_deg, ghost_aim_deg,
+// aim_allowance_deg, margin_m, aim_margin_deg}.
+nlohmann::ordered_json pot_json(const planner::PotReport& pot);
 
 // The stroke as `cueplan solve --json` reports a shot: shot {speed, aim_deg, topspin_k,
 // sidespin_k}, tip_offset, stroke, outcome, final_position, miss_distance (null unless at
-// rest), success_probability, solves, cushion_hits, route, route_names, family,
-// within_limits, violations, constraints, max_cushion_normal_speed, rigid_limit_exceeded,
-// impact_method.
+// rest on a problem with a target), success_probability, success, solves, cushion_hits,
+// route, route_names, family, within_limits, violations, constraints,
+// max_cushion_normal_speed, rigid_limit_exceeded, impact_method, failure {condition,
+// reason}, and pot (pot_json) for a pot problem's stroke.
 nlohmann::ordered_json planned_json(const problems::Problem& problem,
                                     const planner::PlannedShot& p, bool enforce_rigid_limit);
 

@@ -106,6 +106,7 @@ struct TargetReport {
   bool in_zone = false;
   bool reaches = false;
   std::string limits;  // empty when the shot lies within the problem's limits
+  prob::Verdict verdict;  // every condition of the problem, the stroke's limits first
 };
 
 TargetReport target_report(const prob::Problem& problem, const phys::Shot& shot,
@@ -115,6 +116,7 @@ TargetReport target_report(const prob::Problem& problem, const phys::Shot& shot,
   t.in_zone = t.miss <= problem.tolerance;
   t.reaches = prob::reaches_target(problem, r);
   t.limits = prob::check_shot(problem.limits, shot);
+  t.verdict = prob::check_stroke(problem, shot, r);
   return t;
 }
 
@@ -161,26 +163,41 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
   line("cushion hits", std::to_string(r.cushion_hits));
   line("pocketed", r.status == phys::ShotStatus::pocketed ? "yes" : "no");
   line("hit obstacle", r.status == phys::ShotStatus::hit_obstacle ? "yes" : "no");
-  line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
-                     ", tolerance " + number(problem.tolerance, "m"));
-  if (std::isfinite(target.miss))
-    line("miss distance",
-         number(target.miss, "m") +
-             (target.in_zone ? ": inside the target zone" : ": outside the target zone"));
+  if (!problem.has_target) {
+    line("target", "none: a pure pot, the cue ball may stop anywhere");
+  } else {
+    line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
+                       ", tolerance " + number(problem.tolerance, "m"));
+    if (std::isfinite(target.miss))
+      line("miss distance",
+           number(target.miss, "m") +
+               (target.in_zone ? ": inside the target zone" : ": outside the target zone"));
+    else
+      line("miss distance", "none: the ball did not come to rest on the table");
+  }
+  if (problem.pot || problem.first_contact)
+    line("solves problem",
+         target.verdict.solves()
+             ? "yes: " + (problem.pot ? problem.pot->ball + " drops in the " +
+                                            prob::pocket_name(scene, problem.pot->pocket) +
+                                            " pocket cleanly"
+                                      : "the cue ball strikes " + *problem.first_contact + " first") +
+                   (problem.has_target ? ", and the cue ball rests in the target zone" : "")
+             : "no: " + target.verdict.reason);
   else
-    line("miss distance", "none: the ball did not come to rest on the table");
-  line("solves problem",
-       std::string(target.reaches ? "yes" : "no") + ": " +
-           (target.in_zone ? "at rest in the target zone" : "not at rest in the target zone") +
-           " after " + std::to_string(r.cushion_hits) + " cushion" +
-           (r.cushion_hits == 1 ? "" : "s") + " (the problem allows " +
-           cushions_allowed(problem.limits) + ")");
+    line("solves problem",
+         std::string(target.reaches ? "yes" : "no") + ": " +
+             (target.in_zone ? "at rest in the target zone" : "not at rest in the target zone") +
+             " after " + std::to_string(r.cushion_hits) + " cushion" +
+             (r.cushion_hits == 1 ? "" : "s") + " (the problem allows " +
+             cushions_allowed(problem.limits) + ")");
   line("limits", target.limits.empty() ? "the shot lies within the problem's limits"
                                        : "outside the problem's limits: " + target.limits);
   if (success) {
     const planner::Success& s = success->success;
     line("success", estimate_text(s.both) + " of " + std::to_string(s.both.samples) +
-                        " noisy strokes solve the problem (noise: " + noise_text(success->noise) +
+                        " noisy strokes solve the problem" + pot_success_words(s) +
+                        " (noise: " + noise_text(success->noise) +
                         "; seed " + std::to_string(success->seed) + ")");
   }
   line("method", method_text(options, scene));
@@ -291,7 +308,7 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
   j["pocketed"] = r.status == phys::ShotStatus::pocketed;
   j["hit_obstacle"] = r.status == phys::ShotStatus::hit_obstacle;
   j["cue_ball"] = vec(problem.cue_ball);
-  j["target"] = vec(problem.target);
+  j["target"] = problem.has_target ? vec(problem.target) : ordered_json();
   j["tolerance"] = problem.tolerance;
   // null when the ball did not come to rest on the table (JSON has no infinity)
   j["miss_distance"] = std::isfinite(target.miss) ? ordered_json(target.miss) : ordered_json();
@@ -299,6 +316,8 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
   j["reaches_target"] = target.reaches;
   j["within_limits"] = target.limits.empty();
   j["limits_message"] = target.limits;
+  j["failure"] = {{"condition", prob::to_string(target.verdict.failure)},
+                  {"reason", target.verdict.reason}};
   if (success) {
     j["success"] = success_json(success->success);
     const planner::NoiseModel& n = success->noise;

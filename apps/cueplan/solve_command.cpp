@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -39,6 +40,7 @@ std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) 
 }
 
 std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) {
+  if (!problem.has_target) return "none: a pure pot has no target";
   if (!std::isfinite(p.miss_distance)) return "none: the ball did not come to rest on the table";
   const bool inside = p.miss_distance <= problem.tolerance;
   return fmt::format("{:.3g} mm", 1000.0 * p.miss_distance) + " (tolerance " +
@@ -50,7 +52,8 @@ std::string success_text(const plan::PlannerOptions& options, const plan::Succes
   if (options.robustness_samples == 0) return "not estimated (--samples 0)";
   const plan::Estimate& e = success.both;
   std::string text = estimate_text(e) + " of " + std::to_string(e.samples) +
-                     " noisy strokes succeed (noise: " + noise_text(options.noise) + ")";
+                     " noisy strokes succeed" + pot_success_words(success) +
+                     " (noise: " + noise_text(options.noise) + ")";
   if (e.samples < options.robustness_samples)
     text += fmt::format("; cut short at {} of {} strokes by the time budget or by the "
                         "ranking, which stops sampling strokes that are measurably worse",
@@ -88,8 +91,14 @@ void write_text(std::ostream& out, const prob::Problem& problem,
   line("stroke", plan::describe_stroke(s));
   line("tip offset", tip_offset_text(s, problem.limits));
   line("landing", landing_text(b));
-  line("target", "x = " + number(problem.target.x, "m") + ", y = " + number(problem.target.y, "m") +
-                     ", tolerance " + number(problem.tolerance, "m"));
+  if (b.pot)
+    for (const auto& [label, text] : pot_lines(*b.pot)) line(label, text);
+  if (problem.has_target)
+    line("target", "x = " + number(problem.target.x, "m") + ", y = " +
+                       number(problem.target.y, "m") + ", tolerance " +
+                       number(problem.tolerance, "m"));
+  else
+    line("target", "none: a pure pot, the cue ball may stop anywhere");
   line("miss distance", miss_text(problem, b));
   line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
@@ -174,7 +183,7 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
   for (const plan::PlannedShot& a : r.alternatives)
     alternatives.push_back(planned_json(problem, a, options.enforce_rigid_limit));
   j["alternatives"] = alternatives;
-  j["target"] = point_json(problem.target);
+  j["target"] = problem.has_target ? point_json(problem.target) : ordered_json();
   j["tolerance"] = problem.tolerance;
   j["cue_ball"] = point_json(problem.cue_ball);
   j["options"] = {{"global", plan::to_string(options.global)},
@@ -220,9 +229,9 @@ namespace {
 // ---------------------------------------------------------------------------
 // The drawing: the best path in full, the alternatives faint.
 
-draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
-                  const phys::SimulationOptions& search, bool faint) {
-  // Simulated as the reported outcome was: with the method that gave it.
+// The stroke simulated as the reported outcome was: with the method that gave it.
+phys::ShotResult drawn_result(const prob::Problem& problem, const plan::PlannedShot& p,
+                              const phys::SimulationOptions& search) {
   phys::SimulationOptions options = search;
   options.record_path = true;
   if (p.impact_method != phys::ImpactMethod::table &&
@@ -230,7 +239,12 @@ draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p
     options.impact_method = phys::ImpactMethod::exact;
     options.impact_accuracy = 1e-9;
   }
-  const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, p.shot, options);
+  return phys::simulate(problem.scene, problem.cue_ball, p.shot, options);
+}
+
+draw::DrawnPath path_of(const prob::Problem& problem, const plan::PlannedShot& p,
+                        const phys::SimulationOptions& search, bool faint) {
+  const phys::ShotResult r = drawn_result(problem, p, search);
   return {r.path, r.events, faint};
 }
 
@@ -241,6 +255,16 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
   for (const plan::PlannedShot& a : r.alternatives)
     d.balls.front().paths.push_back(path_of(problem, a, options.simulation, true));
   d.balls.front().paths.push_back(path_of(problem, b, options.simulation, false));
+  // The object balls where they stand, and how the best stroke moves them (the pot's
+  // ball to its pocket).
+  const phys::ShotResult best = drawn_result(problem, b, options.simulation);
+  for (size_t k = 1; k < best.balls.size(); ++k) {
+    const phys::BallOutcome& ball = best.balls[k];
+    draw::DrawnBall drawn{ball.name, draw::ball_colour(ball.name).value_or(draw::Colour{0.85, 0.55, 0.2}),
+                          ball.start, {}};
+    if (!ball.path.empty()) drawn.paths.push_back({ball.path, ball.events, false});
+    d.balls.push_back(std::move(drawn));
+  }
   if (!r.alternatives.empty())
     d.faint_legend = std::to_string(r.alternatives.size()) +
                      (r.alternatives.size() == 1 ? " alternative stroke" : " alternative strokes");
@@ -269,6 +293,12 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
   if (options.robustness_samples > 0)
     outcome += "; " + fmt::format("{:.0f} %", 100.0 * b.success_probability) +
                " of noisy strokes succeed (noise \u00d7" + number(options.noise.scale) + ")";
+  if (b.pot)
+    outcome = fmt::format("{} {} in the {} pocket ({:.1f}\u00b0 cut, {} ball); ",
+                          b.pot->made ? "Pots" : "Misses", b.pot->ball, b.pot->pocket_name,
+                          b.pot->cut_deg, b.pot->thickness) +
+              static_cast<char>(std::tolower(static_cast<unsigned char>(outcome.front()))) +
+              outcome.substr(1);
   d.caption.push_back(outcome + ".");
   if (!r.alternatives.empty())
     d.caption.push_back(
@@ -303,8 +333,9 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   c.add_flag("--json", args_.json,
              "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
              "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
-             "success {position, both: {p, low, high, samples}}, evaluations, time_s, "
-             "alternatives (same shape), constraints, ...")
+             "success {pot (pot problems), position, both: {p, low, high, samples}}, pot {ball, "
+             "pocket, cut_deg, thickness, throw_deg, margin_m, aim_margin_deg, ...}, failure, "
+             "evaluations, time_s, alternatives (same shape), constraints, ...")
       ->group(output);
   c.add_option("--svg", args_.svg_file,
                "Also draw the plan: the table, the target zone, the best stroke's path and the "
@@ -314,8 +345,9 @@ SolveCommand::SolveCommand(CLI::App& parent) {
 
   c.footer(
       "Status: solved (exit 0); no_solution_found - the search converged everywhere it "
-      "looked without reaching the target, a strong hint but no proof - or budget_exhausted "
-      "(exit 1; the best stroke found is still reported); bad input exits 2.\n"
+      "looked without reaching the target, a strong hint but no proof - budget_exhausted, or "
+      "unreachable - a pot another ball screens, proved from the geometry (exit 1; the best "
+      "stroke found is still reported); bad input exits 2.\n"
       "Example: cueplan solve problems/one_rail_position.yaml --seed 7 --svg plan.svg");
 }
 

@@ -128,7 +128,7 @@ std::string offset_range(double lo, double hi, const char* negative, const char*
 }
 
 struct Counts {
-  int kinds[5] = {0, 0, 0, 0, 0};
+  int kinds[6] = {0, 0, 0, 0, 0, 0};
   int of(SpinCellKind k) const { return kinds[static_cast<int>(k)]; }
 };
 
@@ -186,7 +186,10 @@ void write_text(std::ostream& out, const prob::Problem& problem, const plan::Spi
            std::to_string(c.of(SpinCellKind::wrong_cushions)) + " at rest after another number, " +
            std::to_string(c.of(SpinCellKind::pocketed)) + " pocketed, " +
            std::to_string(c.of(SpinCellKind::obstacle)) + " against an obstacle, " +
-           std::to_string(c.of(SpinCellKind::no_result)) + " without an outcome");
+           std::to_string(c.of(SpinCellKind::no_result)) + " without an outcome" +
+           (problem.pot ? ", " + std::to_string(c.of(SpinCellKind::no_pot)) + " for which no aim pots " +
+                              problem.pot->ball + " (each spin's aim solved to keep the pot)"
+                        : std::string()));
   line("method", method_text(simulation, problem.scene));
   line("picture", file);
   line("time", fmt::format("{:.3g} s", seconds));
@@ -211,6 +214,7 @@ const char* outcome_key(SpinCellKind kind) {
     case SpinCellKind::pocketed: return "pocketed";
     case SpinCellKind::obstacle: return "hit_obstacle";
     case SpinCellKind::no_result: return "no_outcome";
+    case SpinCellKind::no_pot: return "no_pot";
   }
   return "no_outcome";
 }
@@ -280,6 +284,8 @@ ordered_json spinmap_cells_json(const prob::Problem& problem, const plan::SpinMa
     cell["outcome"] = phys::to_string(p.outcome);
     cell["kind"] = outcome_key(classify(p, problem.limits));
     cell["lands"] = p.lands;
+    cell["aim_deg"] = p.aim_deg;
+    cell["pots"] = p.pots;
     cells.push_back(std::move(cell));
   }
   return cells;
@@ -297,9 +303,14 @@ draw::SpinMapScene picture_of(const prob::Problem& problem, const plan::SpinMap&
   buf = fmt::format("What spin lands here? {}: V = {:.4g} m/s, aim {:.4g}\u00b0",
                 problem.name.c_str(), map.speed, map.aim_deg);
   picture.title = buf;
-  buf = fmt::format("Each cell is one tip offset struck at this speed and aim, coloured by how far from "
-      "the target the cue ball stops; {} of {} spins land (outlined).",
-      map.landing, map.points.size());
+  buf = problem.pot
+            ? fmt::format("Each cell is one tip offset struck at this speed, its aim solved again to "
+                          "keep the pot of {} (spin changes the throw), coloured by how far from the "
+                          "target the cue ball stops; {} of {} spins land (outlined), {} cannot pot.",
+                          problem.pot->ball, map.landing, map.points.size(), map.not_potting)
+            : fmt::format("Each cell is one tip offset struck at this speed and aim, coloured by how far from "
+                          "the target the cue ball stops; {} of {} spins land (outlined).",
+                          map.landing, map.points.size());
   picture.caption.push_back(buf);
   if (source.planned)
     picture.caption.push_back("Speed and aim are the planner's best stroke (" +
@@ -316,7 +327,7 @@ draw::SpinMapScene picture_of(const prob::Problem& problem, const plan::SpinMap&
     const plan::SpinMapPoint& p = map.points[i];
     const phys::ShotResult r =
         phys::simulate(problem.scene, problem.cue_ball,
-                       {map.speed, map.aim_deg, p.topspin_k, p.sidespin_k}, paths);
+                       {map.speed, p.aim_deg, p.topspin_k, p.sidespin_k}, paths);
     picture.sample_paths.push_back({r.path, r.events, true});
   }
   if (source.planned) {

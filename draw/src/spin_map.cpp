@@ -50,6 +50,7 @@ constexpr double kBarHeight = 14.0;
 constexpr Colour kWrongCushions = Colour::hex("#c6c6c6");
 constexpr Colour kObstacleCell = Colour::hex("#7a7a7a");
 constexpr Colour kNoResult = Colour::hex("#f0f0f0");
+constexpr Colour kNoPot = Colour::hex("#d6604d");  // outside viridis and the greys
 constexpr Colour kHatch = Colour::hex("#3a3a3a");
 constexpr Colour kOutline = Colour::hex("#000000");
 
@@ -96,11 +97,12 @@ Colour cell_colour(SpinCellKind kind, double miss, const MissColourScale& scale)
     case SpinCellKind::pocketed: return detail::white();
     case SpinCellKind::obstacle: return kObstacleCell;
     case SpinCellKind::no_result: return kNoResult;
+    case SpinCellKind::no_pot: return kNoPot;
   }
   return kNoResult;
 }
 
-enum class Swatch { landing, wrong_cushions, pocketed, obstacle, no_result, marked, miscue };
+enum class Swatch { landing, wrong_cushions, pocketed, obstacle, no_result, no_pot, marked, miscue };
 
 struct Disc {
   double left = 0.0, top = 0.0;  // the square of the cells
@@ -191,7 +193,7 @@ std::vector<Cell> cells_of(const plan::SpinMap& map, const prob::Problem& proble
 std::vector<detail::LegendEntry> legend_entries(const SpinMapScene& s) {
   const plan::SpinMap& map = s.map;
   const prob::Problem& problem = s.problem;
-  int counts[5] = {0, 0, 0, 0, 0};
+  int counts[6] = {0, 0, 0, 0, 0, 0};
   for (const plan::SpinMapPoint& p : map.points)
     ++counts[static_cast<int>(classify(p, problem.limits))];
   const auto spins = [](int n) { return fmt::format(" ({} {})", n, n == 1 ? "spin" : "spins"); };
@@ -217,6 +219,7 @@ std::vector<detail::LegendEntry> legend_entries(const SpinMapScene& s) {
           break;
         }
         case Swatch::obstacle: c.fill(square, kObstacleCell, "legend-symbol"); break;
+        case Swatch::no_pot: c.fill(square, kNoPot, "legend-symbol"); break;
         case Swatch::no_result:
           c.fill_and_stroke(square, kNoResult, Pen{Colour::hex("#999999"), 0.5}, "legend-symbol");
           break;
@@ -252,6 +255,10 @@ std::vector<detail::LegendEntry> legend_entries(const SpinMapScene& s) {
   if (count(SpinCellKind::no_result) > 0)
     entries.push_back({swatch(Swatch::no_result), "no outcome (event limit or impact failure)" +
                                                       spins(count(SpinCellKind::no_result))});
+  if (count(SpinCellKind::no_pot) > 0 && problem.pot)
+    entries.push_back({swatch(Swatch::no_pot), "no aim pots " + problem.pot->ball +
+                                                   " with this spin" +
+                                                   spins(count(SpinCellKind::no_pot))});
   if (s.marked_shot) entries.push_back({swatch(Swatch::marked), "the planner's spin"});
   entries.push_back(
       {swatch(Swatch::miscue), fmt::format("spin limit: tip offset {:.3g} R (k = {:.3g})",
@@ -552,6 +559,7 @@ Colour viridis(double t) {
 }
 
 SpinCellKind classify(const plan::SpinMapPoint& point, const prob::Limits& limits) {
+  if (!point.pots) return SpinCellKind::no_pot;
   switch (point.outcome) {
     case phys::ShotStatus::rest:
       return point.cushion_hits >= limits.cushions_min && point.cushion_hits <= limits.cushions_max

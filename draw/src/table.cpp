@@ -1013,7 +1013,7 @@ TableMarkings markings_for(const phys::Scene& scene) {
 TableScene problem_table(const problems::Problem& problem) {
   TableScene t;
   t.scene = problem.scene;
-  t.target = TargetZone{problem.target, problem.tolerance};
+  if (problem.has_target) t.target = TargetZone{problem.target, problem.tolerance};
   t.balls.push_back({"cue ball", *ball_colour("cue ball"), problem.cue_ball, {}});
   for (const phys::ObjectBall& b : problem.scene.balls)
     t.balls.push_back({b.name, ball_colour(b.name).value_or(other_ball_colour()), b.position, {}});

@@ -9,6 +9,22 @@ struct OptDeleter {
 };
 using Opt = std::unique_ptr<std::remove_pointer_t<nlopt_opt>, OptDeleter>;
 
+// The objective with a budget of simulations: NLopt calls this, it calls the objective
+// and stops the run once the simulations are spent.
+struct Budgeted {
+  nlopt_func f;
+  void* data;
+  nlopt_opt opt;
+  const int* simulations;
+  int max_simulations;
+};
+double budgeted_call(unsigned n, const double* x, double* grad, void* data) {
+  Budgeted& b = *static_cast<Budgeted*>(data);
+  const double value = b.f(n, x, grad, b.data);
+  if (*b.simulations >= b.max_simulations) nlopt_force_stop(b.opt);
+  return value;
+}
+
 }  // namespace
 
 nlopt_algorithm nlopt_global(GlobalMethod method) {
@@ -39,7 +55,11 @@ nlopt_result run_stage(const StageSettings& s, std::vector<double>* x, nlopt_fun
   const std::vector<double> lower(n, 0.0), upper(n, 1.0);
   nlopt_set_lower_bounds(opt.get(), lower.data());
   nlopt_set_upper_bounds(opt.get(), upper.data());
-  nlopt_set_min_objective(opt.get(), f, data);
+  Budgeted budgeted{f, data, opt.get(), s.simulations, s.max_simulations};
+  if (s.simulations != nullptr)
+    nlopt_set_min_objective(opt.get(), &budgeted_call, &budgeted);
+  else
+    nlopt_set_min_objective(opt.get(), f, data);
   nlopt_set_maxeval(opt.get(), s.max_evaluations);
   if (s.max_time_s > 0.0) nlopt_set_maxtime(opt.get(), s.max_time_s);
   nlopt_set_stopval(opt.get(), s.stop_value);
@@ -64,7 +84,9 @@ bool converged(nlopt_result code) {
   return code == NLOPT_SUCCESS || code == NLOPT_STOPVAL_REACHED || code == NLOPT_FTOL_REACHED ||
          code == NLOPT_XTOL_REACHED || code == NLOPT_ROUNDOFF_LIMITED;
 }
-bool out_of_evaluations(nlopt_result code) { return code == NLOPT_MAXEVAL_REACHED; }
+bool out_of_evaluations(nlopt_result code) {
+  return code == NLOPT_MAXEVAL_REACHED || code == NLOPT_FORCED_STOP;
+}
 bool out_of_time(nlopt_result code) { return code == NLOPT_MAXTIME_REACHED; }
 
 }  // namespace cueplan::planner::detail

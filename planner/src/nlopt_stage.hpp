@@ -25,6 +25,11 @@ struct StageSettings {
   double x_tolerance = 0.0;        // absolute, in unit-cube coordinates
   double f_tolerance = 0.0;        // absolute, in the objective's units
   double initial_step = 0.0;       // unit-cube coordinates; 0: NLopt's choice
+  // A budget in simulations rather than calls, for objectives whose calls cost several
+  // (a pot's aim root): after a call that brings *simulations to max_simulations the
+  // run is forced to stop (reported as out of evaluations). Null: calls only.
+  const int* simulations = nullptr;
+  int max_simulations = 0;
   // MLSL only: the local method inside it, with its own budget and tolerances per
   // local search.
   nlopt_algorithm inner = NLOPT_LN_SBPLX;
@@ -57,7 +62,7 @@ nlopt_result run_stage(const StageSettings& settings, std::vector<double>* x, Ob
 // True when NLopt stopped on its own tolerances (or the stop value), not on a budget
 // or a failure.
 bool converged(nlopt_result code);
-bool out_of_evaluations(nlopt_result code);
+bool out_of_evaluations(nlopt_result code);  // max_evaluations or max_simulations
 bool out_of_time(nlopt_result code);
 
 }  // namespace cueplan::planner::detail

@@ -30,8 +30,9 @@ const char* cushion_name(int cushion) {
 double shot_score(const problems::Problem& problem, const physics::ShotResult& result,
                   bool enforce_rigid_limit) {
   using physics::ShotStatus;
-  const double miss = std::hypot(result.final_position.x - problem.target.x,
-                                 result.final_position.y - problem.target.y);
+  const double miss = problem.has_target ? std::hypot(result.final_position.x - problem.target.x,
+                                                      result.final_position.y - problem.target.y)
+                                         : 0.0;
   double score = 0.0;
   switch (result.status) {
     case ShotStatus::rest: score = miss; break;
@@ -54,11 +55,34 @@ double shot_score(const problems::Problem& problem, const physics::ShotResult& r
   const double rigid_limit = problem.scene.ball_and_cushion.rigid_speed_limit;
   if (enforce_rigid_limit && result.max_cushion_normal_speed > rigid_limit)
     score += kRigidPenalty + kRigidPenaltyPerSpeed * (result.max_cushion_normal_speed - rigid_limit);
-  return score;
+  return score + pot_penalty(problem, result);
+}
+
+double pot_penalty(const problems::Problem& problem, const physics::ShotResult& result) {
+  using problems::Failure;
+  if (!problem.pot && !problem.first_contact) return 0.0;
+  switch (problems::check_outcome(problem, result).failure) {
+    case Failure::first_contact: return 2.0 * kPotPenalty;
+    case Failure::pot_missed:
+    case Failure::wrong_pocket:
+      // Nearer the pocket scores better, so that a pot too slow to drop is steered on.
+      for (const physics::BallOutcome& b : result.balls)
+        if (b.name == problem.pot->ball) {
+          const physics::Vec2 c =
+              problem.scene.pockets[static_cast<size_t>(problem.pot->pocket)].centre;
+          return kPotPenalty + std::min(1.0, std::hypot(b.final_position.x - c.x,
+                                                        b.final_position.y - c.y));
+        }
+      return 2.0 * kPotPenalty;
+    case Failure::other_ball_pocketed: return kPotPenalty;
+    default: return 0.0;
+  }
 }
 
 int search_event_cap(const problems::Problem& problem, int max_events) {
-  const long cap = 3L * (problem.limits.cushions_max + 2) + 4;
+  // Each object ball adds its own: struck, rolling, a cushion or two, a pocket or rest.
+  const long cap = 3L * (problem.limits.cushions_max + 2) + 4 +
+                   8L * static_cast<long>(problem.scene.balls.size());
   return static_cast<int>(std::min<long>(max_events, cap));
 }
 
@@ -113,6 +137,14 @@ std::string violations(const problems::Problem& problem, const physics::Shot& sh
   if (result.cushion_hits < l.cushions_min || result.cushion_hits > l.cushions_max)
     add(fmt::format("{} cushions, outside the allowed {}", result.cushion_hits, l.cushions_min) +
         (l.cushions_max != l.cushions_min ? fmt::format("-{}", l.cushions_max) : ""));
+  // The pot's conditions, for a problem that has them.
+  switch (const problems::Verdict v = problems::check_outcome(problem, result); v.failure) {
+    case problems::Failure::first_contact:
+    case problems::Failure::pot_missed:
+    case problems::Failure::wrong_pocket:
+    case problems::Failure::other_ball_pocketed: add(v.reason); break;
+    default: break;
+  }
   const double rigid_limit = problem.scene.ball_and_cushion.rigid_speed_limit;
   if (enforce_rigid_limit && result.max_cushion_normal_speed > rigid_limit)
     add(fmt::format("cushion normal speed {:.3g} m/s above the rigid-cushion limit {:.3g} m/s",
@@ -143,7 +175,10 @@ PlannedShot describe_outcome(const problems::Problem& problem, const physics::Sh
   p.family = describe(p.family_key);
   p.impact_method = r.impact_method;
   p.violations = violations(problem, shot, r, enforce_rigid_limit);
-  p.solves = p.violations.empty() && problems::reaches_target(problem, r);
+  const problems::Verdict verdict = problems::check_stroke(problem, shot, r);
+  p.failure = verdict.failure;
+  p.failure_reason = verdict.reason;
+  p.solves = p.violations.empty() && verdict.solves();
   return p;
 }
 

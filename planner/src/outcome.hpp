@@ -18,6 +18,7 @@ inline constexpr double kCushionPenalty = 0.5;      // per cushion outside [min,
 inline constexpr double kRigidPenalty = 0.5;        // cushion normal speed above the rigid limit
 inline constexpr double kRigidPenaltyPerSpeed = 1.0;  // m per m/s of excess
 inline constexpr double kFailedPenalty = 100.0;     // no result (invalid, event limit, impact)
+inline constexpr double kPotPenalty = 1.0;          // the pot is not made (or is made foully)
 
 // A tip offset under half a quarter tip (1/32 R) reads as centre, as in describe_stroke().
 inline constexpr double kCentreK = physics::kSpinPerTipOffset / 32.0;
@@ -26,6 +27,12 @@ inline constexpr double kCentreK = physics::kSpinPerTipOffset / 32.0;
 // the table after an allowed number of cushions, plus penalties otherwise.
 double shot_score(const problems::Problem& problem, const physics::ShotResult& result,
                   bool enforce_rigid_limit);
+
+// What shot_score adds for a pot (or first contact) the stroke does not make: 2
+// kPotPenalty for the wrong first contact, kPotPenalty plus the pot's ball's distance
+// from its pocket (at most 1 m) when it does not drop there, kPotPenalty when another
+// ball drops too; 0 without a pot or first_contact.
+double pot_penalty(const problems::Problem& problem, const physics::ShotResult& result);
 
 // The event cap of the search: enough for any stroke that meets at most one cushion
 // more than allowed (a cushion adds at most three events, the rest of a stroke four),

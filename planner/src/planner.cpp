@@ -94,6 +94,25 @@ struct Candidate {
   double score = kInf;
 };
 
+// The stroke at u of the unit cube played: *shot is it, *simulations counts what it cost.
+// A pot's aim is solved for the speed and spin at u (PotAim), from *offset_hint (the last
+// stroke's allowance for throw, updated: the search moves in small steps).
+physics::ShotResult play(const Task& task, const SearchSpace& space, const double* u,
+                         const physics::SimulationOptions& simulation, double* offset_hint,
+                         physics::Shot* shot, int* simulations) {
+  *shot = space.shot(u);
+  if (!task.pot_aim) {
+    ++*simulations;
+    return task.simulate(*shot, simulation);
+  }
+  detail::PotAim::Aimed aimed = task.pot_aim->aim(
+      task, *shot, simulation, *offset_hint, space.pot_offset(u) * task.pot_aim->lateral_reach());
+  *simulations += aimed.simulations;
+  *shot = aimed.shot;
+  if (aimed.found) *offset_hint = detail::wrap_degrees(shot->aim_deg - task.pot_aim->ghost_aim_deg());
+  return std::move(aimed.result);
+}
+
 // The nominal objective: simulate the stroke at u, score it, count it, and (in the
 // global stage) remember the best stroke of each family.
 class NominalObjective {
@@ -105,9 +124,8 @@ class NominalObjective {
         enforce_rigid_limit_(enforce_rigid_limit), record_families_(record_families) {}
 
   double operator()(const double* u) {
-    const physics::Shot shot = space_.shot(u);
-    const physics::ShotResult r = task_.simulate(shot, simulation_);
-    ++evaluations_;
+    physics::Shot shot;
+    const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &evaluations_);
     const double f = detail::shot_score(task_.problem, r, enforce_rigid_limit_);
     last_ = {f, r.final_position, r.status == physics::ShotStatus::rest};
     if (f < best_.score) best_ = {shot, f};
@@ -120,6 +138,7 @@ class NominalObjective {
   }
 
   int evaluations() const { return evaluations_; }
+  const int* simulations_counter() const { return &evaluations_; }
   const Candidate& best() const { return best_; }
   // The stroke last scored: its score and where it stopped.
   const detail::Landing& last() const { return last_; }
@@ -139,6 +158,7 @@ class NominalObjective {
   bool enforce_rigid_limit_;
   bool record_families_;
   int evaluations_ = 0;
+  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim (deg)
   std::vector<double> best_history_;  // best score after each evaluation
   Candidate best_;
   detail::Landing last_;
@@ -156,9 +176,8 @@ class RobustObjective {
         draws_(draws) {}
 
   double operator()(const double* u) {
-    const physics::Shot shot = space_.shot(u);
-    const physics::ShotResult r = task_.simulate(shot, simulation_);
-    ++simulations_;
+    physics::Shot shot;
+    const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &simulations_);
     const double nominal = detail::shot_score(task_.problem, r, options_.enforce_rigid_limit);
     const double tol = task_.problem.tolerance;
     const double outside = std::max(0.0, nominal - 0.8 * tol) / tol;
@@ -182,9 +201,19 @@ class RobustObjective {
   const PlannerOptions& options_;
   const std::vector<detail::NoiseDraw>& draws_;
   int simulations_ = 0;
+  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim (deg)
   double best_score_ = kInf;
   physics::Shot best_;
 };
+
+// Where across the pocket `shot` sends the pot's ball, as SearchSpace::pot_offset
+// counts it (one simulation); 0 without a pot.
+double start_pot_offset(const Task& task, const physics::Shot& shot,
+                        const physics::SimulationOptions& simulation) {
+  if (!task.pot_aim) return 0.0;
+  const std::optional<double> lateral = task.pot_aim->lateral_of(task.simulate(shot, simulation));
+  return lateral ? std::clamp(*lateral / task.pot_aim->lateral_reach(), -1.0, 1.0) : 0.0;
+}
 
 // One local polish and how it ended.
 struct Polish {
@@ -204,12 +233,17 @@ Polish polish(const Task& task, const PlannerOptions& options,
               std::optional<double> held_sidespin_k = std::nullopt) {
   const problems::Problem& problem = task.problem;
   // Centre a free aim on the start, so the polish never meets the seam at +-180.
-  const SearchSpace space(problem.limits, start.aim_deg, held_sidespin_k);
+  const SearchSpace space(problem.limits, start.aim_deg, held_sidespin_k, task.pot_aim.has_value());
   NominalObjective objective(task, space, simulation, options.enforce_rigid_limit, false);
-  std::vector<double> x = space.point(start);
+  std::vector<double> x = space.point(start, start_pot_offset(task, start, simulation));
   StageSettings s;
   s.algorithm = detail::nlopt_local(options.local);
   s.max_evaluations = std::max(1, max_evaluations);
+  if (task.pot_aim) {
+    // A pot's call costs the few simulations of its aim root: they are the budget.
+    s.simulations = objective.simulations_counter();
+    s.max_simulations = std::max(1, max_evaluations);
+  }
   s.max_time_s = max_time_s;
   s.stop_value = kPolishStop * problem.tolerance;
   s.x_tolerance = kXTolerance;
@@ -219,9 +253,9 @@ Polish polish(const Task& task, const PlannerOptions& options,
   Polish p;
   p.code = detail::run_stage(s, &x, &objective);
   p.best = objective.best();
-  p.evaluations = objective.evaluations();
+  p.evaluations = objective.evaluations() + (task.pot_aim ? 1 : 0);  // and start_pot_offset's
   p.stalled = objective.stalled(problem.tolerance);
-  if (p.evaluations == 0) p.best = {start, kInf};
+  if (objective.evaluations() == 0) p.best = {start, kInf};
   return p;
 }
 
@@ -253,14 +287,14 @@ class Planning {
 
   PlanResult run() {
     if (check()) {
-      const Task task(problem_);
+      const Task task(problem_, options_.solve_pot_aim);
       global_stage(task);
       polish_stage(task);
       verify_stage(task);
       simplify_stage(task);
       rank_stage(task);
       robust_stage(task);
-      report_stage();
+      report_stage(task);
     }
     result_.time_s = std::chrono::duration<double>(Clock::now() - started_).count();
     return std::move(result_);
@@ -292,6 +326,13 @@ class Planning {
       result_.error = std::move(e);
       return false;
     }
+    if (const std::optional<problems::PotScreen> screen = problems::screened_pot(problem_)) {
+      result_.status = PlanStatus::unreachable;
+      result_.message = "Unreachable: " + screen->reason +
+                        " (pots off cushions, kisses and plants are not planned).";
+      unreachable_ = true;
+      return false;
+    }
     sim_ = options_.simulation;
     sim_.record_path = false;
     // The search's own copy cuts strokes that run on around the table short.
@@ -302,14 +343,15 @@ class Planning {
 
   // 2. Global stage over the whole stroke space, remembering every family's best.
   void global_stage(const Task& task) {
-    const SearchSpace space(problem_.limits);
+    const SearchSpace space(problem_.limits, 0.0, std::nullopt, task.pot_aim.has_value());
     NominalObjective global(task, space, search_sim_, options_.enforce_rigid_limit, true);
     const int budget =
         std::max(1, static_cast<int>(options_.global_share * options_.max_evaluations));
     if (options_.global == GlobalMethod::ompl_kpiece1) {
       detail::LandingSearch s;
       s.dimension = space.dimension();
-      s.aim_coordinate = problem_.limits.aim.mode == problems::AimMode::free ? 1 : -1;
+      s.aim_coordinate =
+          problem_.limits.aim.mode == problems::AimMode::free && space.aim_searched() ? 1 : -1;
       s.max_evaluations = budget;
       s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
       s.goal_score = problem_.tolerance;  // a stroke in the zone: the polish takes it from there
@@ -325,6 +367,10 @@ class Planning {
       StageSettings s;
       s.algorithm = detail::nlopt_global(options_.global);
       s.max_evaluations = budget;
+      if (task.pot_aim) {
+        s.simulations = global.simulations_counter();
+        s.max_simulations = budget;
+      }
       s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
       s.inner = detail::nlopt_local(options_.local);
       s.inner_max_evaluations = std::max(20, s.max_evaluations / 10);
@@ -541,6 +587,16 @@ class Planning {
         [&](size_t j, unsigned) {
           physics::Shot shot = finals_[parents[j]].shot.shot;
           shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
+          if (task.pot_aim) {
+            // Side changes the throw: the aim is solved again for the new spin.
+            const double lateral =
+                start_pot_offset(task, shot, report_sim()) * task.pot_aim->lateral_reach();
+            const detail::PotAim::Aimed aimed = task.pot_aim->aim(
+                task, shot, report_sim(),
+                detail::wrap_degrees(shot.aim_deg - task.pot_aim->ghost_aim_deg()), lateral);
+            simulations[j] += aimed.simulations + 1;
+            shot = aimed.shot;
+          }
           Final f = describe_shot(task, shot, &simulations[j]);
           if (!f.shot.solves && refine_seconds_left() > 0.0)
             f = polished_and_described(task, shot, kSimplifyEvaluations,
@@ -654,9 +710,10 @@ class Planning {
         static_cast<size_t>(n), physics::thread_count(options_.threads, n),
         [&](size_t i, unsigned) {
           const physics::Shot& start = finals_[i].shot.shot;
-          const SearchSpace local(problem_.limits, start.aim_deg);
+          const SearchSpace local(problem_.limits, start.aim_deg, std::nullopt,
+                                  task.pot_aim.has_value());
           RobustObjective objective(task, local, search_sim_, options_, draws);
-          std::vector<double> x = local.point(start);
+          std::vector<double> x = local.point(start, start_pot_offset(task, start, search_sim_));
           StageSettings s;
           s.algorithm = detail::nlopt_local(options_.local);
           s.max_evaluations = calls_each;
@@ -692,7 +749,7 @@ class Planning {
   }
 
   // 8. Status and the sentence that explains it.
-  void report_stage() {
+  void report_stage(const Task& task) {
     PlanResult& result = result_;
     const double tol = problem_.tolerance;
     if (finals_.empty()) {
@@ -705,9 +762,31 @@ class Planning {
     }
     result.best = finals_.front().shot;
     for (size_t i = 1; i < finals_.size(); ++i) result.alternatives.push_back(finals_[i].shot);
+    if (task.pot_aim) {
+      // The pot of each reported stroke in a player's terms (a few simulations each).
+      std::vector<PlannedShot*> reported{&result.best};
+      for (PlannedShot& a : result.alternatives) reported.push_back(&a);
+      for (PlannedShot* p : reported) {
+        const physics::ShotResult r = task.simulate(p->shot, report_sim());
+        ++result.evaluations;
+        p->pot = detail::pot_report(task, *task.pot_aim, p->shot, r, report_sim(),
+                                    &result.evaluations);
+      }
+    }
     const PlannedShot& best = result.best;
     std::string where = fmt::format("{} ({}) stops {} from the target (tolerance {})", best.family,
                                     describe_stroke(best.shot), mm(best.miss_distance), mm(tol));
+    if (problem_.pot) {
+      const std::string pot = fmt::format("{} ({}) {} {} in the {} pocket", best.family,
+                                          describe_stroke(best.shot),
+                                          best.pot && best.pot->made ? "pots" : "does not pot",
+                                          problem_.pot->ball,
+                                          problems::pocket_name(problem_.scene, problem_.pot->pocket));
+      where = problem_.has_target
+                  ? fmt::format("{} and stops {} from the target (tolerance {})", pot,
+                                mm(best.miss_distance), mm(tol))
+                  : pot;
+    }
     const int searched = std::min<int>(options_.local_starts, static_cast<int>(starts_.size()));
     if (best.solves) {
       result.status = PlanStatus::solved;
@@ -718,6 +797,10 @@ class Planning {
             " and succeeds in {:.0f} % of strokes with a player's error (95 % interval {:.0f}-{:.0f} "
             "%)",
             100.0 * e.p, 100.0 * e.low, 100.0 * e.high);
+      if (e.samples > 0 && best.success.pot && problem_.has_target)
+        result.message += fmt::format("; the pot alone {:.0f} % ({:.0f}-{:.0f} %)",
+                                      100.0 * best.success.pot->p, 100.0 * best.success.pot->low,
+                                      100.0 * best.success.pot->high);
       result.message += ".";
       if (!result.alternatives.empty())
         result.message += fmt::format(" {} other way{} found.", result.alternatives.size(),
@@ -791,6 +874,7 @@ class Planning {
   int next_id_ = 0;  // Final::id of the next shot described for ranking
   detail::NoiseStream draws_{options_.seed};  // the common draws of every success estimate
   bool any_solved_ = false;
+  bool unreachable_ = false;
   int robust_improved_ = 0;
 };
 

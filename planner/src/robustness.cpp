@@ -78,16 +78,14 @@ double soft_success(const Task& task, const physics::Shot& shot,
   const problems::Problem& problem = task.problem;
   const double radius = problem.scene.radius();
   const double miscue = miscue_limit(problem);
-  const problems::Limits& l = problem.limits;
   double sum = 0.0;
   for (const NoiseDraw& d : draws) {
     physics::Shot s;
     if (!noisy_stroke(shot, d, noise, radius, miscue, &s)) continue;
     const physics::ShotResult r = task.simulate(s, simulation);
     ++*simulations;
-    if (r.status != physics::ShotStatus::rest || r.cushion_hits < l.cushions_min ||
-        r.cushion_hits > l.cushions_max)
-      continue;
+    // At rest after allowed cushions (and, with a pot, the pot made cleanly).
+    if (!problems::check_outcome(problem, r).pot_made()) continue;
     // A Cauchy kernel: 1 on the target, 1/2 at the tolerance, and still telling near
     // misses from wide ones a few tolerances out, where most noisy strokes land.
     const double x = problems::miss_distance(problem, r) / problem.tolerance;
@@ -134,11 +132,13 @@ Estimate wilson_estimate(int successes, int samples) {
 namespace detail {
 
 uint8_t judge(const Task& task, const physics::ShotResult& result) {
-  return problems::reaches_target(task.problem, result) ? kSucceeded : kPotted;
+  const problems::Verdict v = problems::check_outcome(task.problem, result);
+  if (v.solves()) return kSucceeded;
+  // Without a pot there is nothing to pot: every stroke played counts as potting.
+  return !task.problem.pot || v.pot_made() ? kPotted : 0;
 }
 
 Success success_of(const Task& task, const std::vector<uint8_t>& outcomes) {
-  (void)task;
   int potted = 0, both = 0;
   for (uint8_t o : outcomes) {
     potted += (o & kPotted) != 0;
@@ -147,7 +147,13 @@ Success success_of(const Task& task, const std::vector<uint8_t>& outcomes) {
   const int n = static_cast<int>(outcomes.size());
   Success s;
   s.both = wilson_estimate(both, n);
-  s.position = s.both;
+  if (!task.problem.pot) {
+    s.position = s.both;
+    return s;
+  }
+  // P(pot) over every stroke; P(position | pot) over the strokes that potted.
+  s.pot = wilson_estimate(potted, n);
+  s.position = wilson_estimate(both, potted);
   return s;
 }
 

@@ -64,7 +64,7 @@ double wrap_degrees(double deg) {
 }
 
 SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg,
-                         std::optional<double> held_sidespin_k)
+                         std::optional<double> held_sidespin_k, bool aim_solved)
     : limits_(limits), held_sidespin_(held_sidespin_k) {
   if (held_sidespin_) {
     held_sidespin_ = std::clamp(*held_sidespin_, -limits.spin_max, limits.spin_max);
@@ -84,6 +84,11 @@ SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg,
       aim_lo_ = limits.aim.lo_deg;
       aim_hi_ = limits.aim.hi_deg;
       break;
+  }
+  if (aim_solved) {
+    aim_lo_ = aim_hi_ = 0.0;
+    aim_searched_ = false;
+    aim_solved_ = true;
   }
 }
 
@@ -109,7 +114,11 @@ physics::Shot SearchSpace::shot(const double* u) const {
   return s;
 }
 
-std::vector<double> SearchSpace::point(const physics::Shot& shot) const {
+double SearchSpace::pot_offset(const double* u) const {
+  return aim_solved_ ? 2.0 * clamp01(u[dimension() - 1]) - 1.0 : 0.0;
+}
+
+std::vector<double> SearchSpace::point(const physics::Shot& shot, double pot_offset) const {
   std::vector<double> u;
   u.push_back(clamp01((shot.speed - limits_.speed_min) / (limits_.speed_max - limits_.speed_min)));
   if (aim_searched_) {
@@ -121,6 +130,7 @@ std::vector<double> SearchSpace::point(const physics::Shot& shot) const {
   if (held_sidespin_) {
     const double t = topspin_reach_ > 0.0 ? shot.topspin_k / topspin_reach_ : 0.0;
     u.push_back(clamp01(0.5 * (t + 1.0)));
+    if (aim_solved_) u.push_back(clamp01(0.5 * (pot_offset + 1.0)));
     return u;
   }
   double a, b;
@@ -130,6 +140,7 @@ std::vector<double> SearchSpace::point(const physics::Shot& shot) const {
                  shrink * shot.topspin_k / limits_.spin_max, &a, &b);
   u.push_back(clamp01(0.5 * (a + 1.0)));
   u.push_back(clamp01(0.5 * (b + 1.0)));
+  if (aim_solved_) u.push_back(clamp01(0.5 * (pot_offset + 1.0)));
   return u;
 }
 

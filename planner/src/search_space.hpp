@@ -30,22 +30,32 @@ class SearchSpace {
   // `aim_centre_deg` matters for a free aim only: the searched turn is centred there.
   // `held_sidespin_k` (|k_S| <= spin_max) fixes the sidespin and leaves the topspin
   // searched within the spin limit.
+  // `aim_solved`: the aim is no coordinate (a pot's aim is solved for each stroke,
+  // PotAim); shot() leaves it at 0 for the caller to set, and a last coordinate says
+  // where across the pocket the pot's ball is sent (pot_offset()).
   explicit SearchSpace(const problems::Limits& limits, double aim_centre_deg = 0.0,
-                       std::optional<double> held_sidespin_k = std::nullopt);
+                       std::optional<double> held_sidespin_k = std::nullopt,
+                       bool aim_solved = false);
 
-  int dimension() const { return (aim_searched_ ? 2 : 1) + (held_sidespin_ ? 1 : 2); }
+  int dimension() const {
+    return (aim_searched_ ? 2 : 1) + (held_sidespin_ ? 1 : 2) + (aim_solved_ ? 1 : 0);
+  }
   bool aim_searched() const { return aim_searched_; }
 
   // The stroke at a point of the unit cube (coordinates are clamped into [0, 1]).
   // A free aim comes back wrapped into [-180, 180).
   physics::Shot shot(const double* u) const;
   // The point of the cube for a stroke within the limits (the inverse of shot()).
-  std::vector<double> point(const physics::Shot& shot) const;
+  std::vector<double> point(const physics::Shot& shot, double pot_offset = 0.0) const;
+  // With a solved aim: where across the pocket the pot's ball is sent, in [-1, 1] of
+  // the reach the aim solver allows (PotAim::lateral_reach); 0 otherwise.
+  double pot_offset(const double* u) const;
 
  private:
   problems::Limits limits_;
   double aim_lo_ = 0.0, aim_hi_ = 0.0;  // deg, the searched interval
   bool aim_searched_ = true;
+  bool aim_solved_ = false;
   std::optional<double> held_sidespin_;
   double topspin_reach_ = 0.0;  // with a held sidespin: |k_T| within the spin limit
 };

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cueplan/physics/parallel.hpp"
+#include "search_space.hpp"
 #include "task.hpp"
 
 namespace cueplan::planner {
@@ -43,11 +44,28 @@ std::vector<SpinMapPoint> grid_points(int grid, double spin_max) {
 }
 
 // Simulates one grid spin and records where it stops against the target.
-void land(const detail::Task& task, double speed, double aim_deg,
+// With a pot, the aim is solved for the spin (from `aim_deg`, the pot's ball sent
+// `lateral_m` across its pocket).
+void land(const detail::Task& task, double speed, double aim_deg, double lateral_m,
           const phys::SimulationOptions& simulation, SpinMapPoint* p) {
   const problems::Problem& problem = task.problem;
-  const phys::Shot shot{speed, aim_deg, p->topspin_k, p->sidespin_k};
-  const phys::ShotResult r = task.simulate(shot, simulation);
+  phys::Shot shot{speed, aim_deg, p->topspin_k, p->sidespin_k};
+  phys::ShotResult r;
+  if (task.pot_aim) {
+    detail::PotAim::Aimed aimed = task.pot_aim->aim(
+        task, shot, simulation, detail::wrap_degrees(aim_deg - task.pot_aim->ghost_aim_deg()),
+        lateral_m);
+    shot = aimed.shot;
+    r = std::move(aimed.result);
+    using problems::Failure;
+    const Failure f = problems::check_outcome(problem, r).failure;
+    p->pots = aimed.found && f != Failure::first_contact && f != Failure::pot_missed &&
+              f != Failure::wrong_pocket && f != Failure::other_ball_pocketed &&
+              f != Failure::no_outcome;
+  } else {
+    r = task.simulate(shot, simulation);
+  }
+  p->aim_deg = shot.aim_deg;
   p->outcome = r.status;
   p->final_position = r.final_position;
   p->miss_distance = problems::miss_distance(problem, r);
@@ -111,13 +129,24 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
     reported = finished;
     options.progress(static_cast<double>(finished) / static_cast<double>(total));
   };
+  // A pot: the spins keep the pot where the given aim sends it with a centre-ball
+  // stroke when that pots, else at the pocket's centre.
+  double lateral = 0.0;
+  if (task.pot_aim) {
+    const phys::ShotResult centre = task.simulate({speed, aim_deg, 0.0, 0.0}, simulation);
+    const std::optional<double> at = task.pot_aim->lateral_of(centre);
+    const double reach = task.pot_aim->lateral_reach();
+    if (at && problems::makes_pot(problem, centre)) lateral = std::clamp(*at, -reach, reach);
+  }
   physics::parallel_for(
       total, threads,
-      [&](size_t i, unsigned) { land(task, speed, aim_deg, simulation, &map.points[i]); },
+      [&](size_t i, unsigned) { land(task, speed, aim_deg, lateral, simulation, &map.points[i]); },
       report);
 
   map.landing = static_cast<int>(std::count_if(map.points.begin(), map.points.end(),
                                                [](const SpinMapPoint& p) { return p.lands; }));
+  map.not_potting = static_cast<int>(std::count_if(
+      map.points.begin(), map.points.end(), [](const SpinMapPoint& p) { return !p.pots; }));
   return map;
 }
 

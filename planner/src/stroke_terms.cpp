@@ -60,6 +60,7 @@ const char* to_string(PlanStatus status) {
     case PlanStatus::solved: return "solved";
     case PlanStatus::no_solution_found: return "no_solution_found";
     case PlanStatus::budget_exhausted: return "budget_exhausted";
+    case PlanStatus::unreachable: return "unreachable";
     case PlanStatus::invalid_input: return "invalid_input";
   }
   return "unknown";

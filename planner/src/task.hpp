@@ -2,15 +2,22 @@
 // its scene compiled, so the thousands of simulations that follow check nothing again.
 #pragma once
 
+#include <optional>
+
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "pot_aim.hpp"
 
 namespace cueplan::planner::detail {
 
 struct Task {
   // `checked` must outlive the task; it is checked by the caller (plan(), plan_route(),
   // spin_map() run problems::validate before anything else).
-  explicit Task(const problems::Problem& checked) : problem(checked), scene(checked.scene) {}
+  // `solve_pot_aim`: a pot problem's aim is solved (pot_aim), not searched.
+  explicit Task(const problems::Problem& checked, bool solve_pot_aim = true)
+      : problem(checked), scene(checked.scene) {
+    if (checked.pot && solve_pot_aim) pot_aim.emplace(checked);
+  }
 
   // A stroke from the problem's cue ball.
   physics::ShotResult simulate(const physics::Shot& shot,
@@ -26,6 +33,8 @@ struct Task {
 
   const problems::Problem& problem;
   const physics::CompiledScene scene;
+  // A pot problem's aim solver (the aim is solved, not searched); empty without a pot.
+  std::optional<PotAim> pot_aim;
 };
 
 }  // namespace cueplan::planner::detail

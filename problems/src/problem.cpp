@@ -83,7 +83,7 @@ Validation validate(const Problem& p) {
   // A pocket or ball a position meets is a field of the scene. The cue ball lies among
   // the object balls; the target need not be clear of them, which the shot may move.
   Validation place = p.scene.check_position(p.cue_ball, {"cue_ball"});
-  if (!place) place = p.scene.check_rest_position(p.target, {"target"});
+  if (!place && p.has_target) place = p.scene.check_rest_position(p.target, {"target"});
   if (place) {
     if (place->other) place->other = place->other->under({"scene"});
     return place;
@@ -134,7 +134,14 @@ Validation validate(const Problem& p) {
   if (p.first_contact && !is_ball(*p.first_contact))
     return invalid({"first_contact"},
                    fmt::format("names no object ball on the table: \"{}\"", *p.first_contact));
+  if (!p.has_target && !p.pot)
+    return invalid({"target"}, "is required unless the problem has a pot");
   return {};
+}
+
+std::string Problem::required_first_contact() const {
+  if (first_contact) return *first_contact;
+  return pot ? pot->ball : std::string();
 }
 
 namespace {
@@ -216,6 +223,7 @@ std::string check_shot(const Limits& limits, const physics::Shot& shot) {
 double miss_distance(const Problem& problem, const physics::ShotResult& result) {
   if (result.status != physics::ShotStatus::rest)
     return std::numeric_limits<double>::infinity();
+  if (!problem.has_target) return 0.0;
   return std::hypot(result.final_position.x - problem.target.x,
                     result.final_position.y - problem.target.y);
 }
@@ -243,9 +251,107 @@ std::string pocket_name(const physics::Scene& scene, int pocket) {
 }
 
 bool reaches_target(const Problem& problem, const physics::ShotResult& result) {
-  return miss_distance(problem, result) <= problem.tolerance &&
-         result.cushion_hits >= problem.limits.cushions_min &&
-         result.cushion_hits <= problem.limits.cushions_max;
+  return check_outcome(problem, result).solves();
+}
+
+const char* to_string(Failure failure) {
+  switch (failure) {
+    case Failure::none: return "none";
+    case Failure::outside_limits: return "outside_limits";
+    case Failure::no_outcome: return "no_outcome";
+    case Failure::obstacle: return "obstacle";
+    case Failure::cue_ball_pocketed: return "cue_ball_pocketed";
+    case Failure::first_contact: return "first_contact";
+    case Failure::pot_missed: return "pot_missed";
+    case Failure::wrong_pocket: return "wrong_pocket";
+    case Failure::other_ball_pocketed: return "other_ball_pocketed";
+    case Failure::cushions: return "cushions";
+    case Failure::off_target: return "off_target";
+  }
+  return "?";
+}
+
+namespace {
+
+Verdict broken(Failure failure, std::string reason) { return {failure, std::move(reason)}; }
+
+const physics::BallOutcome* outcome_of(const physics::ShotResult& result, const std::string& name) {
+  for (const physics::BallOutcome& b : result.balls)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
+}  // namespace
+
+Verdict check_outcome(const Problem& problem, const physics::ShotResult& result) {
+  using physics::ShotStatus;
+  switch (result.status) {
+    case ShotStatus::rest: break;
+    case ShotStatus::pocketed: return broken(Failure::cue_ball_pocketed, "the cue ball is pocketed");
+    case ShotStatus::hit_obstacle: {
+      for (const physics::BallOutcome& b : result.balls)
+        if (!b.events.empty() && b.events.back().type == physics::EventType::obstacle)
+          return broken(Failure::obstacle,
+                        fmt::format("{} touches obstacles[{}]",
+                                    b.name == physics::kCueBallName ? "the cue ball" : b.name,
+                                    b.events.back().index));
+      return broken(Failure::obstacle, "a ball touches an obstacle ball");
+    }
+    default:
+      return broken(Failure::no_outcome, fmt::format("no outcome ({}): {}",
+                                                     physics::to_string(result.status),
+                                                     result.message));
+  }
+  const std::string first = problem.required_first_contact();
+  if (!first.empty()) {
+    const int k = result.first_contact;
+    if (k <= 0 || k >= static_cast<int>(result.balls.size()))
+      return broken(Failure::first_contact, fmt::format("the cue ball strikes no ball ({} first)", first));
+    if (result.balls[static_cast<size_t>(k)].name != first)
+      return broken(Failure::first_contact,
+                    fmt::format("the cue ball strikes {} first, not {}",
+                                result.balls[static_cast<size_t>(k)].name, first));
+  }
+  if (problem.pot) {
+    const Pot& pot = *problem.pot;
+    const physics::BallOutcome* ball = outcome_of(result, pot.ball);
+    if (ball == nullptr || !ball->pocketed)
+      return broken(Failure::pot_missed,
+                    fmt::format("{} does not drop (it stops at x = {:.4g} m, y = {:.4g} m)",
+                                pot.ball, ball ? ball->final_position.x : 0.0,
+                                ball ? ball->final_position.y : 0.0));
+    if (ball->pocket != pot.pocket)
+      return broken(Failure::wrong_pocket,
+                    fmt::format("{} drops in the {} pocket, not the {}", pot.ball,
+                                pocket_name(problem.scene, ball->pocket),
+                                pocket_name(problem.scene, pot.pocket)));
+    for (const physics::BallOutcome& b : result.balls)
+      if (b.pocketed && b.name != pot.ball && b.name != physics::kCueBallName)
+        return broken(Failure::other_ball_pocketed,
+                      fmt::format("{} drops too (in the {} pocket)", b.name,
+                                  pocket_name(problem.scene, b.pocket)));
+  }
+  const Limits& l = problem.limits;
+  if (result.cushion_hits < l.cushions_min || result.cushion_hits > l.cushions_max)
+    return broken(Failure::cushions,
+                  fmt::format("the cue ball meets {} cushion{}, outside the allowed {}",
+                              result.cushion_hits, result.cushion_hits == 1 ? "" : "s",
+                              l.cushions_min == l.cushions_max
+                                  ? fmt::format("{}", l.cushions_min)
+                                  : fmt::format("{}-{}", l.cushions_min, l.cushions_max)));
+  const double miss = miss_distance(problem, result);
+  if (!(miss <= problem.tolerance))
+    return broken(Failure::off_target,
+                  fmt::format("the cue ball stops {:.3g} mm from the target (tolerance {:.3g} mm)",
+                              1e3 * miss, 1e3 * problem.tolerance));
+  return {};
+}
+
+Verdict check_stroke(const Problem& problem, const physics::Shot& shot,
+                     const physics::ShotResult& result) {
+  if (std::string why = check_shot(problem.limits, shot); !why.empty())
+    return broken(Failure::outside_limits, std::move(why));
+  return check_outcome(problem, result);
 }
 
 }  // namespace cueplan::problems

@@ -279,7 +279,12 @@ Problem read_problem(const Field& document, const std::string& source) {
   read_obstacles(root, scene, lines);
   read_balls(root, lines, scene);
   problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m");
-  problem.target = read_position(root, "target", "where the cue ball should stop, [x, y] in m");
+  // With a pot the target may be left out: a pure pot, the cue ball free to stop anywhere.
+  if (root.find("target") || !root.find("pot"))
+    problem.target = read_position(
+        root, "target", "where the cue ball should stop, [x, y] in m (optional with a pot)");
+  else
+    problem.has_target = false;
   if (const std::optional<Field> f = root.find("tolerance"))
     problem.tolerance = detail::positive_number(*f);
   problem.limits = read_limits(root, lines);
@@ -288,6 +293,10 @@ Problem read_problem(const Field& document, const std::string& source) {
   if (const std::optional<Field> f = root.find("time_budget_s"))
     problem.time_budget_s = detail::positive_number(*f);
   read_pot(root, lines, problem);
+  // A pot may be played with or without cushions: [0, 3] unless the file says otherwise.
+  const std::optional<Field> limits = root.find("limits");
+  if (problem.pot && !(limits && limits->value.IsMap() && limits->value["cushions"]))
+    problem.limits.cushions_min = 0;
   // The physics' and the problem's own rules, on the finished problem.
   if (const physics::Validation error = validate(problem)) fail_on(*error, lines, root.line());
   return problem;

@@ -94,6 +94,20 @@ const FileCase kFileCases[] = {
      "target: [2,1]\n",
      "2: pot.pocket: must be one of bottom_left, bottom_middle, bottom_right, top_left, "
      "top_middle, top_right, got \"top_midle\" (did you mean top_middle?)"},
+    {"PotWithoutBalls",
+     "pot: {ball: red, pocket: top_left}\ncue_ball: [1,1]\n",
+     "1: pot.ball: names an object ball, but the file has no balls: \"red\""},
+    {"PotOnATableWithoutPockets",
+     "table: {pockets: none}\nballs: {red: [1.5,0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "cue_ball: [1,1]\n",
+     "3: pot.pocket: names the top_left pocket, but the table has none (table.pockets: none)"},
+    {"FirstContactNamesTheCueBall",
+     "balls: {red: [1.5,0.9]}\npot: {ball: red, pocket: top_left}\nfirst_contact: cue\n"
+     "cue_ball: [1,1]\n",
+     "3: first_contact: must be the name of a ball in balls: red, got \"cue\""},
+    {"TargetMissingWithoutAPot", "cue_ball: [1,1]\n",
+     "1: target: missing; required: where the cue ball should stop, [x, y] in m (optional with a "
+     "pot)"},
     {"BallFrictionTooHigh", "physics: {mu_ball: 1.5}\ncue_ball: [1,1]\ntarget: [2,1]\n",
      "1: physics.mu_ball: times physics.mu_slide must be below 2/7 for mathavan_2014: a larger "
      "friction could hold a ball's slip on the cloth at zero, which the model does not describe, "

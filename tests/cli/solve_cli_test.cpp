@@ -385,5 +385,69 @@ TEST(Spinmap, WithoutSpeedAndAimUsesThePlannersStroke) {
   EXPECT_NE(read_text(svg).find("the planner's best stroke"), std::string::npos) << "in the description";
 }
 
+// A pot problem's JSON: the pot in a player's terms and the success split into the pot,
+// the position given the pot and both, for the answer and each alternative; the stroke
+// replayed by `simulate` pots as reported, and `simulate --samples` splits it alike.
+TEST(SolvePotJson, ReportsThePotAndItsSuccessSplit) {
+  const ProcessResult run = cueplan(solve_command("pots/cut_middle_pocket", "--json"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = parsed(run);
+  std::vector<json> shots{j};
+  for (const json& a : j.at("alternatives")) shots.push_back(a);
+  for (const json& s : shots) {
+    const json& pot = s.at("pot");
+    EXPECT_EQ(pot.at("ball"), "red");
+    EXPECT_EQ(pot.at("pocket"), "bottom_middle");
+    for (const char* key : {"cut_deg", "throw_deg", "margin_m", "aim_margin_deg"})
+      EXPECT_TRUE(pot.at(key).is_number()) << key;
+    const std::string thickness = pot.at("thickness");
+    EXPECT_TRUE(thickness == "full" || thickness == "3/4" || thickness == "half" ||
+                thickness == "1/4" || thickness == "thin")
+        << thickness;
+    const json& success = s.at("success");
+    for (const char* part : {"pot", "position", "both"})
+      for (const char* key : {"p", "low", "high", "samples"})
+        EXPECT_TRUE(success.at(part).at(key).is_number()) << part << "." << key;
+    EXPECT_EQ(s.at("success_probability"), success.at("both").at("p"));
+    EXPECT_LE(success.at("both").at("p").get<double>(), success.at("pot").at("p").get<double>());
+  }
+  EXPECT_TRUE(j.at("pot").at("made").get<bool>());
+  EXPECT_EQ(j.at("failure").at("condition"), "none");
+
+  // Replayed: the red drops in its pocket, and the estimate is split the same way.
+  const json& shot = j.at("shot");
+  const std::string stroke = " --speed " + fmt_exact(shot.at("speed")) + " --aim " +
+                             fmt_exact(shot.at("aim_deg")) + " --topspin-k " +
+                             fmt_exact(shot.at("topspin_k")) + " --sidespin-k " +
+                             fmt_exact(shot.at("sidespin_k"));
+  const ProcessResult sim = cueplan("simulate '" + problem_path("pots/cut_middle_pocket") + "'" +
+                                    stroke + " --samples 40 --json");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const json k = json::parse(sim.out);
+  EXPECT_EQ(k.at("failure").at("condition"), "none");
+  EXPECT_TRUE(k.at("reaches_target").get<bool>());
+  bool red_in = false;
+  for (const json& b : k.at("balls"))
+    if (b.at("name") == "red") red_in = b.at("pocketed").get<bool>() && b.at("pocket") == "bottom_middle";
+  EXPECT_TRUE(red_in);
+  EXPECT_EQ(k.at("success").at("pot").at("samples"), 40);
+  EXPECT_EQ(k.at("success").at("position").at("samples").get<int>(),
+            static_cast<int>(std::lround(k.at("success").at("pot").at("p").get<double>() * 40)));
+}
+
+// A screened pot: status unreachable, the reason in the message, exit 1.
+TEST(SolvePotJson, AScreenedPotIsUnreachable) {
+  const std::string file = (scratch() / "screened.yaml").string();
+  write_text(file,
+             "balls: {red: [1.0, 1.0], blue: [0.6, 0.6]}\npot: {ball: red, pocket: bottom_left}\n"
+             "cue_ball: [1.5, 1.3]\n");
+  const ProcessResult run = cueplan("solve '" + file + "' " + kQuick + " --json");
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  const json j = parsed(run);
+  EXPECT_EQ(j.at("status"), "unreachable");
+  EXPECT_NE(j.at("message").get<std::string>().find("screened by blue"), std::string::npos)
+      << j.at("message");
+}
+
 }  // namespace
 }  // namespace cli_test

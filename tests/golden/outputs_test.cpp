@@ -100,19 +100,51 @@ void dump_planned(std::string& out, const std::string& label, const planner::Pla
                      s.success.both.samples, s.family, s.violations);
 }
 
+// A plan the budget ends, not the clock: the same on every machine.
+planner::PlannerOptions golden_plan_options() {
+  planner::PlannerOptions options;
+  options.max_evaluations = 800;
+  options.max_time_s = 600.0;
+  options.robustness_samples = 40;
+  options.threads = 2;
+  return options;
+}
+
 void dump_plans(std::string& out) {
   for (const char* name : {"one_rail_position.yaml", "near_pocket.yaml", "blocked_direct_route.yaml"}) {
     const problems::Problem p = load(name);
-    planner::PlannerOptions options;
-    options.max_evaluations = 800;
-    options.max_time_s = 600.0;
-    options.robustness_samples = 40;
-    options.threads = 2;
+    const planner::PlannerOptions options = golden_plan_options();
     const planner::PlanResult r = planner::plan(p, options);
     out += fmt::format("solve {}: {} evaluations {} local {} converged {} message '{}'\n", name,
                        planner::to_string(r.status), r.evaluations, r.local_searches,
                        r.converged_searches, r.message.substr(0, r.message.find(" and succeeds")));
     dump_planned(out, "best", r.best);
+    for (const planner::PlannedShot& a : r.alternatives) dump_planned(out, "alternative", a);
+  }
+}
+
+// Pot plans: the stroke, its success condition by condition and the pot's report.
+void dump_pot_plans(std::string& out) {
+  for (const char* name : {"pots/cut_middle_pocket.yaml", "pots/long_pot.yaml"}) {
+    const problems::Problem p = load(name);
+    const planner::PlannerOptions options = golden_plan_options();
+    const planner::PlanResult r = planner::plan(p, options);
+    out += fmt::format("solve {}: {} evaluations {} local {} converged {}\n", name,
+                       planner::to_string(r.status), r.evaluations, r.local_searches,
+                       r.converged_searches);
+    dump_planned(out, "best", r.best);
+    for (const planner::PlannedShot* s : {&r.best}) {
+      const planner::Success& u = s->success;
+      if (u.pot)
+        out += fmt::format("    pot p {} [{} {}] of {}; position p {} of {}\n", hex(u.pot->p),
+                           hex(u.pot->low), hex(u.pot->high), u.pot->samples, hex(u.position.p),
+                           u.position.samples);
+      if (s->pot)
+        out += fmt::format("    pot {} {} made {} cut {} {} throw {} ghost {} margin {} aim margin {}\n",
+                           s->pot->ball, s->pot->pocket_name, s->pot->made, hex(s->pot->cut_deg),
+                           s->pot->thickness, hex(s->pot->throw_deg), hex(s->pot->ghost_aim_deg),
+                           hex(s->pot->margin_m), hex(s->pot->aim_margin_deg));
+    }
     for (const planner::PlannedShot& a : r.alternatives) dump_planned(out, "alternative", a);
   }
 }
@@ -139,6 +171,7 @@ std::string dump() {
   dump_shots(out);
   dump_plans(out);
   dump_routes(out);
+  dump_pot_plans(out);
   return out;
 }
 

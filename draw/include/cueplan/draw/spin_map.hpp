@@ -25,6 +25,7 @@ enum class SpinCellKind {
   pocketed,
   obstacle,   // stopped against an obstacle ball
   no_result,  // the simulation gave no outcome (event limit, impact failure)
+  no_pot,     // a pot problem: no aim pots the ball with this spin
 };
 SpinCellKind classify(const planner::SpinMapPoint& point, const problems::Limits& limits);
 

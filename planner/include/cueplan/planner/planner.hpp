@@ -121,6 +121,10 @@ struct PlannerOptions {
   // method moves out of the tolerance is polished again with it. Success
   // probabilities and the robust polish use `simulation` as it is (fast with a table).
   bool verify_exact = true;
+  // A pot problem's aim is solved for each speed and spin (the 1-D root near the
+  // ghost-ball line) and the search is over speed and spin; false searches the aim
+  // like any other coordinate (bench/README.md, "Pot and position", compares them).
+  bool solve_pot_aim = true;
 
   // Empty when usable; otherwise the first broken rule, fields named as these members
   // ({"max_evaluations"}, {"noise", "scale"}, {"simulation", "impact_accuracy"}).
@@ -132,6 +136,7 @@ enum class PlanStatus {
   no_solution_found,  // every local polish converged (or stopped improving) short of the
                       // target: a strong hint that none exists, not a proof (message says why)
   budget_exhausted,   // evaluations or time ran out before a solution was found
+  unreachable,        // proved impossible from the geometry (a screened pot); message says why
   invalid_input,      // nothing searched; message names the field
 };
 const char* to_string(PlanStatus status);
@@ -150,6 +155,29 @@ struct Family {
 // In words, e.g. "2 cushions (y = W, x = L), follow, right spin".
 std::string describe(const Family& family);
 
+// A pot in a player's terms (pot problems only).
+struct PotReport {
+  std::string ball;          // the pot's ball
+  int pocket = -1;           // index into Scene::pockets
+  std::string pocket_name;   // as problem files name it
+  bool made = false;         // the ball dropped in that pocket
+  std::string striker;       // the ball that struck it: "cue", or a plant's first ball
+  // Between the striking ball's path and the line of centres at contact (0: full ball);
+  // cut_side +1 when the pot's ball leaves to the left of that path, -1 to the right.
+  double cut_deg = 0.0;
+  int cut_side = 0;
+  std::string thickness;     // full, 3/4, half, 1/4 or thin: the ball covered, 1 - sin(cut)
+  double throw_deg = 0.0;    // the pot's ball's direction against the line of centres (ccw)
+  double ghost_aim_deg = 0.0;  // the aim of the ghost-ball line (no throw)
+  double aim_allowance_deg = 0.0;  // the stroke's aim less the ghost-ball aim (ccw): how
+                                   // the aim allows for the throw
+  double margin_m = 0.0;     // the capture radius less the pocket centre's distance from
+                             // the ball's line: how far inside the circle it passes
+  double aim_margin_deg = 0.0;  // the least aim error, either way, that would miss it
+
+  bool operator==(const PotReport&) const = default;
+};
+
 // A stroke and what it does.
 struct PlannedShot {
   physics::Shot shot;
@@ -167,6 +195,11 @@ struct PlannedShot {
   std::string family;                // family_key in words, e.g. "2 cushions (y = 0, x = L), follow, right spin"
   bool solves = false;               // within the tolerance and breaks no constraint
   std::string violations;            // constraints broken, in words; empty when none
+  // The first condition of the problem the outcome breaks (problems::check_stroke),
+  // with the reason in words; none when it solves the problem.
+  problems::Failure failure = problems::Failure::none;
+  std::string failure_reason;
+  std::optional<PotReport> pot;      // pot problems: the pot of the reported strokes
   physics::ImpactMethod impact_method = physics::ImpactMethod::exact;  // that gave this outcome
 };
 
@@ -217,6 +250,16 @@ struct KnownShotProblem {
 };
 std::vector<KnownShotProblem> known_shot_problems(int count, uint64_t seed,
                                                   const physics::SimulationOptions& simulation);
+
+// Pot problems whose answer is known, for tests and benchmarks: on a snooker table a
+// random cue-ball position, one object ball ("red") at a random place, and a random
+// stroke within the default limits aimed to strike it (cuts up to about 64 degrees)
+// that pots it directly (the red meets no cushion or other ball on its way in) and
+// cleanly and leaves the cue ball at rest after 0-3 cushions; the pot is
+// the red into the pocket it dropped in, the target where the cue ball stops
+// (tolerance 0.02 m), the cushion limits a pot's default [0, 3]. Deterministic for a seed.
+std::vector<KnownShotProblem> known_pot_problems(int count, uint64_t seed,
+                                                 const physics::SimulationOptions& simulation);
 
 // Problems whose feasible strokes are split into many small islands: a snooker table
 // with `obstacles` balls (1-30) at random places (not touching each other, the cushions

@@ -2,7 +2,11 @@
 // limit sends the cue ball, and which of those spins stop in the target zone.
 //
 // The spins form a square grid over the tip-offset disc (k_T, k_S with
-// sqrt(k_T^2 + k_S^2) <= spin_max); each is simulated on the problem's scene.
+// sqrt(k_T^2 + k_S^2) <= spin_max); each is simulated on the problem's scene. On a pot
+// problem each spin's aim is solved again so that the pot is kept (spin changes the
+// throw): from the given aim, sending the pot's ball where that aim sends it with a
+// centre-ball stroke when that pots (else at the pocket's centre); a spin for which no
+// aim pots is marked (pots false).
 // A pure function of its arguments, deterministic for any number of threads.
 #pragma once
 
@@ -34,7 +38,9 @@ struct SpinMapPoint {
   physics::Vec2 final_position;            // m
   double miss_distance = 0.0;              // m; infinite unless at rest
   int cushion_hits = 0;
-  bool lands = false;                      // at rest within tolerance, allowed cushions
+  bool lands = false;                      // solves the problem (problems::check_outcome)
+  double aim_deg = 0.0;                    // the aim struck: the map's, or a pot's solved aim
+  bool pots = true;                        // a pot problem: some aim pots with this spin
 };
 
 struct SpinMap {
@@ -44,6 +50,7 @@ struct SpinMap {
   int grid = 0;
   std::vector<SpinMapPoint> points;  // the grid points inside the disc, row by row
   int landing = 0;                   // how many land
+  int not_potting = 0;               // a pot problem: spins for which no aim pots
   std::string message;               // set when the inputs were invalid (points empty)
   // The broken rule when the inputs were invalid: SpinMapOptions' members, {"speed"},
   // {"aim_deg"}, or the problem's (Problem's members, as problems::validate names them).

@@ -58,6 +58,9 @@ struct Problem {
   physics::Vec2 cue_ball;  // m, table frame; checked with Scene::check_position
   physics::Vec2 target;    // m, where the cue ball should come to rest; checked with
                            // Scene::check_rest_position (object balls may move away)
+  // False for a pure pot (a file with `pot` and no `target`): the cue ball may come to
+  // rest anywhere, and `target` is unused. Only a problem with a pot may lack a target.
+  bool has_target = true;
   double tolerance = kDefaultTolerance;  // m, radius of the landing zone; > 0
   Limits limits;
   // For a route of several strokes (planner/route.hpp, `cueplan route`): the most
@@ -65,10 +68,14 @@ struct Problem {
   // Empty when the file leaves them out; commands then use their own defaults.
   std::optional<int> max_strokes;
   std::optional<double> time_budget_s;
-  // For pot-and-position planning (the planners ignore them for now): the pot the shot
-  // is to make, and the object ball the cue ball must strike first.
+  // For pot-and-position planning: the pot the shot is to make, and the object ball the
+  // cue ball must strike first (required_first_contact() gives the default, the pot's ball).
   std::optional<Pot> pot;
   std::optional<std::string> first_contact;
+
+  // The ball the cue ball must strike first: first_contact, else the pot's ball; empty
+  // when neither is given (any ball, or none).
+  std::string required_first_contact() const;
 };
 
 // Empty when the problem can be planned; otherwise the first broken rule, fields named
@@ -122,15 +129,73 @@ LoadResult parse_problem(const std::string& yaml_text, const std::string& source
 std::string describe(const Problem& problem);
 
 // Empty when `shot` lies within `limits` (speed, spin and aim; the cushion count is an
-// outcome, judged by reaches_target); otherwise which limit it breaks.
+// outcome, judged by check_outcome); otherwise which limit it breaks.
 std::string check_shot(const Limits& limits, const physics::Shot& shot);
 
+// The conditions a stroke must meet to solve a problem, in the order they are judged;
+// the first one broken is the reason it fails.
+enum class Failure {
+  none,                 // every condition met
+  outside_limits,       // the stroke breaks a limit: speed, spin or aim (check_shot)
+  no_outcome,           // the simulation gave no result (event limit, a failed impact)
+  obstacle,             // a ball touched an obstacle ball
+  cue_ball_pocketed,    // the cue ball dropped
+  first_contact,        // the cue ball struck no ball, or another ball first
+  pot_missed,           // the pot's ball did not drop
+  wrong_pocket,         // it dropped, in another pocket
+  other_ball_pocketed,  // a ball other than the pot's dropped
+  cushions,             // the cue ball met too few or too many cushions
+  off_target,           // the cue ball came to rest outside the tolerance of the target
+};
+// The condition's name: "none", "outside_limits", ..., "off_target".
+const char* to_string(Failure failure);
+
+// What a stroke's outcome made of a problem: the first condition broken, in words.
+struct Verdict {
+  Failure failure = Failure::none;
+  std::string reason;  // the broken condition in words; empty when none is
+  // Every condition but the cue ball's rest on the target holds: for a pot problem, the
+  // pot is made cleanly (the ball in its pocket, first contact, no foul, cushions and
+  // limits kept). P(pot) counts these strokes, P(position | pot) those of them that
+  // also stop on the target.
+  bool pot_made() const { return failure == Failure::none || failure == Failure::off_target; }
+  bool solves() const { return failure == Failure::none; }
+};
+
+// The conditions on the outcome alone (every condition but the stroke's limits):
+//   the shot ended with every ball at rest (no obstacle touched, cue ball not pocketed);
+//   the cue ball's first ball contact is required_first_contact(), when there is one;
+//   with a pot: its ball dropped in its pocket and no other ball dropped;
+//   the cue ball met limits.cushions_min..cushions_max cushions;
+//   with a target: the cue ball rests within `tolerance` of it.
+// Without a pot or first_contact these are the conditions of reaches_target.
+Verdict check_outcome(const Problem& problem, const physics::ShotResult& result);
+// The same with the stroke's limits judged first: whether `shot`, with the outcome
+// `result`, solves the problem (the one judgement of planner, simulate and solve).
+Verdict check_stroke(const Problem& problem, const physics::Shot& shot,
+                     const physics::ShotResult& result);
+
+// Why no direct pot exists, when that can be proved from the table's geometry alone:
+// another ball (an object ball or an obstacle) screens the pot's ball from every line
+// into its pocket's capture circle, or the cue ball from every straight path to a ghost
+// ball that could send it there. Pots off cushions, kisses and plants are not judged.
+struct PotScreen {
+  std::string blocked;  // "the object ball's path" or "the cue ball's path"
+  std::string by;       // the screening ball: an object ball's name or "obstacle N"
+  std::string reason;   // "no direct pot: red's path to the bottom_left pocket is ..."
+};
+// Empty unless the problem has a direct pot (first contact the pot's ball) that is
+// screened.
+std::optional<PotScreen> screened_pot(const Problem& problem);
+
 // Distance (m) from the target to where the cue ball came to rest; +infinity when the
-// shot did not end at rest on the table (pocketed, hit an obstacle, failed).
+// shot did not end at rest on the table (pocketed, hit an obstacle, failed); 0 at rest
+// for a problem without a target (a pure pot).
 double miss_distance(const Problem& problem, const physics::ShotResult& result);
 
-// True when the outcome solves the problem: at rest within `tolerance` of the target
-// after a number of cushion contacts within [cushions_min, cushions_max].
+// True when the outcome solves the problem (check_outcome finds no condition broken):
+// without a pot or first_contact, at rest within `tolerance` of the target after a
+// number of cushion contacts within [cushions_min, cushions_max].
 bool reaches_target(const Problem& problem, const physics::ShotResult& result);
 
 // True when the outcome makes the problem's pot (the ball in that pocket); false when
