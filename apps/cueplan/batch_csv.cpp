@@ -119,8 +119,9 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
   return summary;
 }
 
-std::string summary_line(const char* command, const BatchSummary& summary) {
-  std::string line = fmt::format("{}: {} row{}", command, summary.rows, summary.rows == 1 ? "" : "s");
+std::string summary_line(const char* command, const BatchSummary& summary, const char* unit) {
+  std::string line =
+      fmt::format("{}: {} {}{}", command, summary.rows, unit, summary.rows == 1 ? "" : "s");
   const char* separator = ": ";
   for (const auto& [status, count] : summary.by_status) {
     line += fmt::format("{}{} {}", separator, count, status);

@@ -90,8 +90,10 @@ struct BatchSummary {
 BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& out,
                        std::ostream* progress);
 
-// "cueplan rebound: 7 rows: 3 ok, 2 parse_error, 2 invalid_input; 4 failed".
-std::string summary_line(const char* command, const BatchSummary& summary);
+// "cueplan rebound: 7 rows: 2 invalid_input, 3 ok, 2 parse_error; 4 failed" (statuses
+// in alphabetical order); `unit` names what was counted.
+std::string summary_line(const char* command, const BatchSummary& summary,
+                         const char* unit = "row");
 
 // Runs a batch as the commands do: progress on `err` when it is the process's stderr
 // and a terminal, the summary line on `err` at the end. Returns an ExitCode: kExitOk
