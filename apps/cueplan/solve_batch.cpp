@@ -16,7 +16,6 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <ostream>
 #include <thread>
 #include <vector>
@@ -109,19 +108,20 @@ class TablesByCushion {
     const std::string key =
         phys::ImpactTable::cache_file_name(scene.ball_and_cushion, {});
     std::lock_guard lock(mutex_);
-    if (auto it = tables_.find(key); it != tables_.end()) return it->second.get();
+    const char* failed = "the impact table for this problem's cushion could not be had (see stderr)";
+    if (auto it = tables_.find(key); it != tables_.end()) {
+      if (!it->second) *why = failed;  // tried once, for the first problem that needed it
+      return it->second.get();
+    }
     auto table = std::make_unique<phys::ImpactTable>();
     phys::SimulationOptions ignored = s.options.simulation;
-    std::ostringstream notes;
+    // Its notes (a first build's, said before it starts) go to stderr as they come.
+    std::lock_guard err_lock(err_mutex);
     const int code = prepare_impact_table(kCommandName, scene, s.table_cache, s.threads,
-                                          s.accuracy_given, table.get(), &ignored, notes);
-    {
-      std::lock_guard err_lock(err_mutex);
-      err << notes.str();
-    }
+                                          s.accuracy_given, table.get(), &ignored, err);
     if (code != kExitOk) {
-      *why = "the impact table for this problem's cushion could not be had: " + notes.str();
-      while (!why->empty() && why->back() == '\n') why->pop_back();
+      *why = failed;
+      tables_[key] = nullptr;
       return nullptr;
     }
     return (tables_[key] = std::move(table)).get();
