@@ -15,6 +15,8 @@ packages=(
   clang libclang-rt-14-dev
   libcpp-httplib-dev
   chromium chromium-driver python3-selenium
+  pybind11-dev python3-dev python3-pybind11 python3-numpy
+  python3-dask python3-distributed python3-matplotlib
 )
 
 missing=()

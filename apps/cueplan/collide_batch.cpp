@@ -5,7 +5,6 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <ostream>
 #include <utility>
 
 #include "cueplan/physics/parallel.hpp"
@@ -127,13 +126,22 @@ std::string flag_message(const phys::ValidationError& error) {
   return message_in(error, kCollideFlags);
 }
 
-void write_collide_batch(const BatchInput& input, const phys::BallBallParams& params,
-                         const phys::CollisionOptions& options, int threads, std::ostream& out) {
-  std::vector<BatchOutcome> outcomes(input.rows.size());
-  phys::parallel_for(input.rows.size(), phys::thread_count(threads, input.rows.size()),
-                     [&](size_t i, unsigned) { outcomes[i] = solve_row(input.rows[i], params, options); });
-  out << kCollideBatchHeader << ',' << kCollideBatchResultHeader << '\n';
-  write_batch_rows(input, kInputColumns, std::move(outcomes), out);
+BatchJob collide_batch_job(const phys::BallBallParams& params,
+                           const phys::CollisionOptions& options, int threads) {
+  BatchJob job;
+  job.command = "cueplan collide";
+  job.header = std::string(kCollideBatchHeader) + ',' + kCollideBatchResultHeader;
+  job.input_columns = kInputColumns;
+  job.block_rows = 4096;
+  job.failed = [](const std::string& status) {
+    return status != phys::to_string(phys::CollisionStatus::ok);
+  };
+  job.compute = [&params, &options, threads](std::span<const BatchRow> rows,
+                                             std::span<BatchOutcome> outcomes) {
+    phys::parallel_for(rows.size(), phys::thread_count(threads, rows.size()),
+                       [&](size_t i, unsigned) { outcomes[i] = solve_row(rows[i], params, options); });
+  };
+  return job;
 }
 
 }  // namespace cueplan::cli

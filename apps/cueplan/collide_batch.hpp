@@ -9,10 +9,9 @@
 //         again, that speed and its direction (deg from +x); then throw_deg, status and a
 //         quoted message. A bad row gets status parse_error or invalid_input and empty
 //         result cells; the others are unaffected. Rows come out in input order,
-//         identical for any thread count.
+//         identical for any thread count, each block as soon as it is resolved.
 #pragma once
 
-#include <iosfwd>
 #include <string>
 
 #include "batch_csv.hpp"
@@ -65,9 +64,10 @@ std::string flag_of(const physics::FieldPath& field);
 // A library error in the flags' words.
 std::string flag_message(const physics::ValidationError& error);
 
-// Resolves every row (from `threads` threads, 0: one per core) and writes the output
-// CSV, header included, to `out`.
-void write_collide_batch(const BatchInput& input, const physics::BallBallParams& params,
-                         const physics::CollisionOptions& options, int threads, std::ostream& out);
+// The batch of collisions: each block's rows resolved from `threads` threads (0: one
+// per core); rows whose status is not ok fail. `params` and `options` must outlive the
+// job.
+BatchJob collide_batch_job(const physics::BallBallParams& params,
+                           const physics::CollisionOptions& options, int threads);
 
 }  // namespace cueplan::cli

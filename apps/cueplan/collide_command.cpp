@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string_view>
@@ -284,7 +285,10 @@ CollideCommand::CollideCommand(CLI::App& parent) {
   auto* batch = c.add_option("--batch", args_.batch_file,
                              fmt::format("Resolve every row of a CSV file with header '{}' (m/s, "
                                          "deg, k_T, k_S) and write CSV to stdout: the input "
-                                         "columns, then {}. A bad row gets its own error status.",
+                                         "columns, then {}, each block of rows as it is done; '-' reads "
+                                         "standard input. A bad row gets its own error status "
+                                         "and the rest go on; a summary (rows, rows of each "
+                                         "status) goes to stderr.",
                                          kCollideBatchHeader, kCollideBatchResultHeader))
                     ->type_name("FILE.csv")
                     ->group(output);
@@ -303,7 +307,9 @@ CollideCommand::CollideCommand(CLI::App& parent) {
       "Frame: the table's, x along the cue ball's line, y to its left, z up; directions are "
       "in degrees from +x. The rolling velocity is where each ball's sliding on the cloth "
       "ends, v - 2/7 u for the contact-point velocity u, nothing else intervening.\n"
-      "Exit codes: 0 done, 1 no usable result, 2 bad input.\n"
+      "Exit codes: 0 done, 1 no usable result (--batch: some row without one, or a bad "
+      "row), 2 bad input (--batch: the command line, or a file that cannot be opened or has "
+      "the wrong header).\n"
       "Example: cueplan collide --speed 1 --cut 30 --topspin-k 1");
 }
 
@@ -315,8 +321,9 @@ struct CollideCommand::Inputs {
   phys::CollisionOptions options;
   phys::BallBallParams params;
   bool batch = false;
-  BatchInput batch_input;  // with --batch
-  CutShotInput shot;       // without
+  bool check_only = false;             // validate(): standard input is not read
+  std::unique_ptr<BatchReader> reader;  // with --batch, past its header
+  CutShotInput shot;                    // without
 };
 
 std::string CollideCommand::read_options(phys::CollisionOptions* options) const {
@@ -379,14 +386,16 @@ std::string CollideCommand::read_inputs(Inputs* inputs) const {
   if (std::string why = read_params(&inputs->params); !why.empty()) return why;
   inputs->batch = given("--batch");
   if (inputs->batch) {
-    inputs->batch_input = read_batch_csv(args_.batch_file, kCollideBatchHeader);
-    return inputs->batch_input.error;
+    if (inputs->check_only && args_.batch_file == "-") return {};
+    inputs->reader = std::make_unique<BatchReader>(args_.batch_file, kCollideBatchHeader);
+    return inputs->reader->error();
   }
   return read_shot(inputs->params, inputs);
 }
 
 int CollideCommand::validate(std::ostream& err) const {
   Inputs inputs;
+  inputs.check_only = true;
   const std::string why = read_inputs(&inputs);
   return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
 }
@@ -396,8 +405,8 @@ int CollideCommand::run(std::ostream& out, std::ostream& err) const {
   if (std::string why = read_inputs(&inputs); !why.empty())
     return usage_error(err, kCommandName, why);
   if (inputs.batch) {
-    write_collide_batch(inputs.batch_input, inputs.params, inputs.options, args_.threads, out);
-    return out ? kExitOk : kExitFailed;
+    return run_batch_command(
+        *inputs.reader, collide_batch_job(inputs.params, inputs.options, args_.threads), out, err);
   }
   const CutShotInput& in = inputs.shot;
   const CutOutcome o = collide_cut(inputs.params, inputs.options, in.speed, in.cut_deg, in.spin);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <optional>
-#include <ostream>
 #include <span>
 
 #include "cueplan/physics/parallel.hpp"
@@ -65,35 +64,45 @@ constexpr size_t kChunk = 256;
 
 }  // namespace
 
-void write_batch(const BatchInput& input, const physics::CushionParams& params,
-                 const physics::ImpactOptions& options, int threads, std::ostream& out) {
-  // Rows parsed in order; the valid ones resolved together, in chunks over the threads
-  // (resolve_impacts gives each impact what resolve_impact would: the output does not
-  // depend on the thread count).
-  std::vector<BatchOutcome> outcomes(input.rows.size());
-  std::vector<physics::BallState> incoming;
-  std::vector<size_t> row_of;
-  for (size_t i = 0; i < input.rows.size(); ++i) {
-    ParsedRow parsed = parse_row(input.rows[i], params);
-    if (parsed.incoming) {
-      incoming.push_back(*parsed.incoming);
-      row_of.push_back(i);
-    } else {
-      outcomes[i] = std::move(parsed.failure);
+BatchJob rebound_batch_job(const physics::CushionParams& params,
+                           const physics::ImpactOptions& options, int threads) {
+  BatchJob job;
+  job.command = "cueplan rebound";
+  job.header = std::string(kBatchInputHeader) +
+               ",rebound_speed,rebound_angle_deg,vx,vy,wx,wy,wz,status,message";
+  job.input_columns = kInputColumns;
+  job.block_rows = 32 * kChunk;
+  job.failed = [](const std::string& status) {
+    return status != physics::to_string(physics::ImpactStatus::ok) &&
+           status != physics::to_string(physics::ImpactStatus::rigid_limit_exceeded);
+  };
+  // A block's rows parsed in order; the valid ones resolved together, in chunks over the
+  // threads (resolve_impacts gives each impact what resolve_impact would: the output
+  // does not depend on the thread count or the block size).
+  job.compute = [&params, &options, threads](std::span<const BatchRow> rows,
+                                             std::span<BatchOutcome> outcomes) {
+    std::vector<physics::BallState> incoming;
+    std::vector<size_t> row_of;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      ParsedRow parsed = parse_row(rows[i], params);
+      if (parsed.incoming) {
+        incoming.push_back(*parsed.incoming);
+        row_of.push_back(i);
+      } else {
+        outcomes[i] = std::move(parsed.failure);
+      }
     }
-  }
-  std::vector<physics::ImpactResult> results(incoming.size());
-  const size_t chunks = (incoming.size() + kChunk - 1) / kChunk;
-  physics::parallel_for(chunks, physics::thread_count(threads, chunks), [&](size_t c, unsigned) {
-    const size_t begin = c * kChunk, count = std::min(kChunk, incoming.size() - begin);
-    physics::resolve_impacts(params, std::span(incoming).subspan(begin, count),
-                             std::span(results).subspan(begin, count), options);
-  });
-  for (size_t j = 0; j < results.size(); ++j)
-    outcomes[row_of[j]] = outcome_of(input.rows[row_of[j]], results[j]);
-
-  out << kBatchInputHeader << ",rebound_speed,rebound_angle_deg,vx,vy,wx,wy,wz,status,message\n";
-  write_batch_rows(input, kInputColumns, std::move(outcomes), out);
+    std::vector<physics::ImpactResult> results(incoming.size());
+    const size_t chunks = (incoming.size() + kChunk - 1) / kChunk;
+    physics::parallel_for(chunks, physics::thread_count(threads, chunks), [&](size_t c, unsigned) {
+      const size_t begin = c * kChunk, count = std::min(kChunk, incoming.size() - begin);
+      physics::resolve_impacts(params, std::span(incoming).subspan(begin, count),
+                               std::span(results).subspan(begin, count), options);
+    });
+    for (size_t j = 0; j < results.size(); ++j)
+      outcomes[row_of[j]] = outcome_of(rows[row_of[j]], results[j]);
+  };
+  return job;
 }
 
 }  // namespace cueplan::cli

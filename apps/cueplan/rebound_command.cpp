@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
@@ -238,7 +239,9 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
                    "Resolve every row of a CSV file with header "
                    "'speed,angle_deg,topspin_k,sidespin_k' (m/s, deg, k_T, k_S) and write CSV "
                    "to stdout: the input columns, then rebound_speed,rebound_angle_deg,vx,vy,"
-                   "wx,wy,wz,status,message. A bad row gets its own error status.")
+                   "wx,wy,wz,status,message, each block of rows as it is done; '-' reads "
+                   "standard input. A bad row gets its own error status and the rest go on; a "
+                   "summary (rows, rows of each status) goes to stderr.")
           ->type_name("FILE.csv")
           ->group(output);
   c.add_option("--threads", args_.threads,
@@ -259,7 +262,9 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
       "Normal speeds V0 sin(alpha) above " +
       number(physics::CushionParams{}.rigid_speed_limit, "m/s") +
       " are solved but flagged: the rigid-cushion model is not trusted there.\n"
-      "Exit codes: 0 done (also when only flagged), 1 no usable result, 2 bad input.\n"
+      "Exit codes: 0 done (also when only flagged), 1 no usable result (--batch: some row "
+      "without one, or a bad row), 2 bad input (--batch: the command line, or a file that "
+      "cannot be opened or has the wrong header).\n"
       "Example: cueplan rebound --speed 1 --angle 45 --topspin-k 1 --sidespin-k 0");
 }
 
@@ -310,8 +315,9 @@ struct ReboundCommand::Inputs {
   phys::ImpactOptions options;
   phys::CushionParams params;
   bool batch = false;
-  BatchInput batch_input;  // with --batch
-  Incidence in;            // without
+  bool check_only = false;             // validate(): standard input is not read
+  std::unique_ptr<BatchReader> reader;  // with --batch, past its header
+  Incidence in;                         // without
 };
 
 std::string ReboundCommand::read_inputs(Inputs* inputs) const {
@@ -320,14 +326,16 @@ std::string ReboundCommand::read_inputs(Inputs* inputs) const {
   // The incoming ball(s): whole-input errors come before any table is built.
   inputs->batch = given("--batch");
   if (inputs->batch) {
-    inputs->batch_input = read_batch_csv(args_.batch_file, kBatchInputHeader);
-    return inputs->batch_input.error;
+    if (inputs->check_only && args_.batch_file == "-") return {};
+    inputs->reader = std::make_unique<BatchReader>(args_.batch_file, kBatchInputHeader);
+    return inputs->reader->error();
   }
   return read_incidence(inputs->params, &inputs->in);
 }
 
 int ReboundCommand::validate(std::ostream& err) const {
   Inputs inputs;
+  inputs.check_only = true;
   const std::string why = read_inputs(&inputs);
   return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
 }
@@ -340,7 +348,6 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
   phys::ImpactOptions& options = inputs.options;
   const phys::CushionParams& params = inputs.params;
   const bool batch = inputs.batch;
-  const BatchInput& batch_input = inputs.batch_input;
   const Incidence& in = inputs.in;
 
   // The surrogate, built or loaded once for every impact of this run.
@@ -362,8 +369,8 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
   }
 
   if (batch) {
-    write_batch(batch_input, params, options, args_.threads, out);
-    return out ? kExitOk : kExitFailed;
+    return run_batch_command(*inputs.reader, rebound_batch_job(params, options, args_.threads),
+                             out, err);
   }
 
   const phys::ImpactResult result = phys::resolve_impact(

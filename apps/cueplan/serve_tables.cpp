@@ -80,6 +80,18 @@ ImpactTableStore::Lookup ImpactTableStore::find(const phys::CushionParams& param
   return queued;
 }
 
+ImpactTableStore::Lookup ImpactTableStore::wait_for(const phys::CushionParams& params) {
+  const Lookup found = find(params);
+  if (found.refused || found.state == State::ready || found.state == State::failed) return found;
+  const std::string key = phys::ImpactTable::cache_file_name(params, settings_.options);
+  std::unique_lock<std::mutex> lock(mutex_);
+  const Entry* entry = nullptr;
+  for (const std::unique_ptr<Entry>& e : entries_)
+    if (e->key == key) entry = e.get();
+  settled_.wait(lock, [&] { return entry->state == State::ready || entry->state == State::failed; });
+  return lookup_of(*entry);
+}
+
 bool ImpactTableStore::working() const {
   std::lock_guard<std::mutex> lock(mutex_);
   for (const std::unique_ptr<Entry>& e : entries_)
@@ -151,6 +163,7 @@ void ImpactTableStore::run() {
                        : "cannot make the impact table: " + note;
       line = "impact table for " + cushion_text(entry->params) + ": " + entry->note;
     }
+    settled_.notify_all();
     if (settings_.on_note) settings_.on_note(line);
   }
 }

@@ -48,6 +48,9 @@ class ImpactTableStore {
   // The table for this cushion, or what is being done about it; a cushion the store
   // does not know is queued (unless the store is full).
   Lookup find(const physics::CushionParams& params);
+  // The same, but waits while the table is queued or being made: ready, failed or
+  // refused.
+  Lookup wait_for(const physics::CushionParams& params);
   // True while a table is queued or being made.
   bool working() const;
   // Each table's cushion (theta_deg, mu_cushion, mu_table, restitution), state and
@@ -68,7 +71,8 @@ class ImpactTableStore {
 
   Settings settings_;
   mutable std::mutex mutex_;
-  std::condition_variable wake_;
+  std::condition_variable wake_;     // the building thread: work queued, or stop
+  std::condition_variable settled_;  // waiters: a table is ready or failed
   std::vector<std::unique_ptr<Entry>> entries_;  // in the order asked for
   bool stopping_ = false;
   std::thread builder_;

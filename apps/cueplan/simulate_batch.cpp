@@ -4,7 +4,7 @@
 
 #include <cmath>
 #include <optional>
-#include <ostream>
+#include <memory>
 
 #include "cueplan/physics/parallel.hpp"
 #include "csv.hpp"
@@ -105,19 +105,29 @@ std::string check_shot_inputs(const phys::Shot& shot, const ShotNames& names) {
   return message_in(*e, by_field);
 }
 
-void write_shot_batch(const BatchInput& input, const problems::Problem& problem,
-                      const phys::SimulationOptions& options, int threads, std::ostream& out) {
+BatchJob shot_batch_job(const problems::Problem& problem, const phys::SimulationOptions& options,
+                        int threads) {
   phys::SimulationOptions row_options = options;
   row_options.record_path = false;  // only the outcome is written
-  const phys::CompiledScene scene(problem.scene);
-  std::vector<BatchOutcome> outcomes(input.rows.size());
-  phys::parallel_for(input.rows.size(), phys::thread_count(threads, input.rows.size()),
-                     [&](size_t i, unsigned) {
-                       outcomes[i] = simulate_row(input.rows[i], problem, scene, row_options);
-                     });
-
-  out << kShotBatchHeader << ',' << kShotBatchResultHeader << '\n';
-  write_batch_rows(input, kInputColumns, std::move(outcomes), out);
+  auto scene = std::make_shared<const phys::CompiledScene>(problem.scene);
+  BatchJob job;
+  job.command = "cueplan simulate";
+  job.header = std::string(kShotBatchHeader) + ',' + kShotBatchResultHeader;
+  job.input_columns = kInputColumns;
+  job.block_rows = 1024;
+  job.failed = [](const std::string& status) {
+    return status != phys::to_string(phys::ShotStatus::rest) &&
+           status != phys::to_string(phys::ShotStatus::pocketed) &&
+           status != phys::to_string(phys::ShotStatus::hit_obstacle);
+  };
+  job.compute = [&problem, scene, row_options, threads](std::span<const BatchRow> rows,
+                                                        std::span<BatchOutcome> outcomes) {
+    phys::parallel_for(rows.size(), phys::thread_count(threads, rows.size()),
+                       [&](size_t i, unsigned) {
+                         outcomes[i] = simulate_row(rows[i], problem, *scene, row_options);
+                       });
+  };
+  return job;
 }
 
 }  // namespace cueplan::cli

@@ -10,10 +10,10 @@
 //         empty) and pocketed_balls (the object balls pocketed, NAME:POCKET joined by ';',
 //         in the order of the file's balls). A bad row gets status parse_error or
 //         invalid_input and empty result cells; the others are unaffected. Rows come out
-//         in input order, identical for any thread count.
+//         in input order, identical for any thread count, each block of rows as soon
+//         as it is simulated (batch_csv.hpp).
 #pragma once
 
-#include <iosfwd>
 #include <string>
 
 #include "batch_csv.hpp"
@@ -22,7 +22,7 @@
 
 namespace cueplan::cli {
 
-// The header an input file starts with (read it with read_batch_csv).
+// The header an input file starts with (read it with BatchReader).
 inline constexpr const char* kShotBatchHeader = "speed,aim_deg,topspin_k,sidespin_k";
 inline constexpr const char* kShotBatchResultHeader =
     "final_x,final_y,cushion_hits,pocketed,hit_obstacle,duration,miss_distance,reaches_target,"
@@ -42,9 +42,11 @@ inline constexpr ShotNames kShotColumnNames = {"speed", "aim_deg", "topspin_k", 
 // line naming the input.
 std::string check_shot_inputs(const physics::Shot& shot, const ShotNames& names);
 
-// Simulates every row on the problem's scene (from `threads` threads, 0: one per core)
-// and writes the output CSV, header included, to `out`.
-void write_shot_batch(const BatchInput& input, const problems::Problem& problem,
-                      const physics::SimulationOptions& options, int threads, std::ostream& out);
+// The batch of shots: each block's rows simulated on the problem's scene (from
+// `threads` threads, 0: one per core); rows without an outcome (parse_error,
+// invalid_input, event_limit, impact_failed, collision_failed) fail. `problem` (and
+// the table options point at) must outlive the job.
+BatchJob shot_batch_job(const problems::Problem& problem,
+                        const physics::SimulationOptions& options, int threads);
 
 }  // namespace cueplan::cli

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
@@ -515,8 +516,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
                    "stdout: the input columns, then final_x,final_y (m),cushion_hits,pocketed,"
                    "hit_obstacle (1/0),duration (s),miss_distance (m; inf unless at rest),"
                    "reaches_target (1/0),status,message,first_contact (the object ball the cue "
-                   "ball struck first),pocketed_balls (NAME:POCKET;...). A bad row gets its own "
-                   "error status.")
+                   "ball struck first),pocketed_balls (NAME:POCKET;...), each block of rows as "
+                   "it is done; '-' reads standard input. A bad row gets its own error status "
+                   "and the rest go on; a summary (rows, rows of each status) goes to stderr.")
           ->type_name("FILE.csv")
           ->group(output);
   const char* noise = "Success under a player's noise";
@@ -563,8 +565,9 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       number(phys::CushionParams{}.rigid_speed_limit, "m/s") +
       " along its normal is solved but flagged: the rigid-cushion model is not trusted there.\n"
       "Exit codes: 0 simulated (at rest, pocketed or against an obstacle), 1 the simulation "
-      "stopped without an outcome (event_limit, impact_failed, collision_failed), 2 bad "
-      "input.\n"
+      "stopped without an outcome (event_limit, impact_failed, collision_failed; --batch: "
+      "some row without one, or a bad row), 2 bad input (--batch: the command line, or a file "
+      "that cannot be opened or has the wrong header).\n"
       "Example: cueplan simulate problems/one_rail_position.yaml --speed 1.002 --aim -60.36 "
       "--topspin-k 0.8 --sidespin-k 0");
 }
@@ -608,8 +611,9 @@ int SimulateCommand::prepare_table(const prob::Problem& problem, phys::ImpactTab
 struct SimulateCommand::Inputs {
   phys::SimulationOptions options;
   bool batch = false;
-  BatchInput batch_input;  // with --batch
-  phys::Shot shot;         // without
+  bool check_only = false;             // validate(): standard input is not read
+  std::unique_ptr<BatchReader> reader;  // with --batch, past its header
+  phys::Shot shot;                      // without
   prob::LoadResult loaded;
 };
 
@@ -619,8 +623,10 @@ std::string SimulateCommand::read_inputs(Inputs* inputs) const {
   // table is built.
   inputs->batch = given("--batch");
   if (inputs->batch) {
-    inputs->batch_input = read_batch_csv(args_.batch_file, kShotBatchHeader);
-    if (!inputs->batch_input.error.empty()) return inputs->batch_input.error;
+    if (!(inputs->check_only && args_.batch_file == "-")) {
+      inputs->reader = std::make_unique<BatchReader>(args_.batch_file, kShotBatchHeader);
+      if (!inputs->reader->error().empty()) return inputs->reader->error();
+    }
   } else if (std::string why = read_shot(&inputs->shot); !why.empty()) {
     return why;
   }
@@ -632,6 +638,7 @@ std::string SimulateCommand::read_inputs(Inputs* inputs) const {
 
 int SimulateCommand::validate(std::ostream& err) const {
   Inputs inputs;
+  inputs.check_only = true;
   const std::string why = read_inputs(&inputs);
   return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
 }
@@ -643,7 +650,6 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
   if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);
   phys::SimulationOptions& options = inputs.options;
   const bool batch = inputs.batch;
-  const BatchInput& batch_input = inputs.batch_input;
   const phys::Shot& shot = inputs.shot;
   const prob::Problem& problem = *inputs.loaded.problem;
 
@@ -652,8 +658,8 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
     if (int code = prepare_table(problem, &table, &options, err); code != kExitOk) return code;
 
   if (batch) {
-    write_shot_batch(batch_input, problem, options, args_.threads, out);
-    return out ? kExitOk : kExitFailed;
+    return run_batch_command(*inputs.reader, shot_batch_job(problem, options, args_.threads),
+                             out, err);
   }
 
   const phys::ShotResult result = phys::simulate(problem.scene, problem.cue_ball, shot, options);

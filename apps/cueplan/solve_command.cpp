@@ -315,10 +315,11 @@ SolveCommand::SolveCommand(CLI::App& parent) {
       "problem's target, and report it in a player's terms with its chance of success and "
       "its alternatives.");
   CLI::App& c = *command_;
-  c.add_option("PROBLEM", args_.problem_file,
-               "Problem file (YAML, problems/README.md): table, cue ball, target, limits")
-      ->required()
-      ->type_name("FILE.yaml");
+  CLI::Option* problem =
+      c.add_option("PROBLEM", args_.problem_file,
+                   "Problem file (YAML, problems/README.md): table, cue ball, target, limits. "
+                   "Required unless --batch is given.")
+          ->type_name("FILE.yaml");
 
   add_planner_flags(c, &args_.planner, "Search");
   c.add_option("--threads", args_.threads,
@@ -330,18 +331,20 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   add_impact_flags(c, &args_.impact, "Cushion impacts");
 
   const char* output = "Output";
-  c.add_flag("--json", args_.json,
+  CLI::Option* json = c.add_flag("--json", args_.json,
              "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
              "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
              "success {pot (pot problems), position, both: {p, low, high, samples}}, pot {ball, "
              "pocket, cut_deg, thickness, throw_deg, margin_m, aim_margin_deg, ...}, failure, "
              "evaluations, time_s, alternatives (same shape), constraints, ...")
       ->group(output);
-  c.add_option("--svg", args_.svg_file,
-               "Also draw the plan: the table, the target zone, the best stroke's path and the "
-               "alternatives' paths dimmed; SVG, PNG or PDF by the file's extension")
-      ->type_name("FILE.svg|.png|.pdf")
-      ->group(output);
+  CLI::Option* svg =
+      c.add_option("--svg", args_.svg_file,
+                   "Also draw the plan: the table, the target zone, the best stroke's path and "
+                   "the alternatives' paths dimmed; SVG, PNG or PDF by the file's extension")
+          ->type_name("FILE.svg|.png|.pdf")
+          ->group(output);
+  add_solve_batch_flags(c, &args_.batch, problem, json, svg);
 
   c.footer(
       "Status: solved (exit 0); no_solution_found - the search converged everywhere it "
@@ -370,17 +373,22 @@ std::string SolveCommand::read_inputs(Inputs* inputs) const {
     return why;
   if (!args_.svg_file.empty())
     if (std::string why = check_picture_file("--svg", args_.svg_file); !why.empty()) return why;
+  if (args_.problem_file.empty()) return "PROBLEM is required (a problem file) unless --batch is given";
   inputs->loaded = prob::load_problem(args_.problem_file);
   return inputs->loaded.error;
 }
 
 int SolveCommand::validate(std::ostream& err) const {
+  if (command_->count("--batch") > 0)
+    return validate_solve_batch(args_.batch, args_, command_->count("--accuracy") > 0, err);
   Inputs inputs;
   const std::string why = read_inputs(&inputs);
   return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
 }
 
 int SolveCommand::run(std::ostream& out, std::ostream& err) const {
+  if (command_->count("--batch") > 0)
+    return run_solve_batch(args_.batch, args_, command_->count("--accuracy") > 0, out, err);
   const auto started = std::chrono::steady_clock::now();
   const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
 

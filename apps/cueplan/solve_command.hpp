@@ -11,6 +11,7 @@
 #include "cueplan/problems/problem.hpp"
 #include "impact_setup.hpp"
 #include "planner_flags.hpp"
+#include "solve_batch.hpp"
 
 namespace CLI {
 class App;
@@ -26,6 +27,7 @@ struct SolveArgs {
   int threads = 0;    // independent starts in parallel (and the table build); 0: one per core
   bool json = false;
   std::string svg_file;  // empty: no drawing
+  SolveBatchArgs batch;  // --batch FILE.jsonl, --shard K/N (solve_batch.hpp)
 };
 
 class SolveCommand {

@@ -288,7 +288,8 @@ TEST(CollideBatch, EveryRowComesOutAndBadRowsAloneFail) {
              "1,30,nan,0\n"
              "0.5,5,-1,0.3\n");
   const ProcessResult run = cueplan("collide --batch '" + input.string() + "'");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.exit_code, 1) << "some rows failed";
+  EXPECT_EQ(run.err, "cueplan collide: 8 rows: 3 invalid_input, 3 ok, 2 parse_error; 5 failed\n");
   EXPECT_EQ(lines_of(run.out).at(0), kBatchHeader);
   const auto rows = csv_rows(run.out);
   ASSERT_EQ(rows.size(), 8u);

@@ -1,5 +1,6 @@
 // Tests of the `cueplan` command line, run as a separate process the way a user runs
 // it: what it prints, its exit codes, and that its numbers are the library's.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -286,7 +287,9 @@ TEST(Batch, EveryRowComesOutAndBadRowsAloneFail) {
              "nan,45,1,0\n"
              "0.5,89,2,1\n");
   const ProcessResult run = cueplan("rebound --batch '" + input.string() + "'");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.exit_code, 1) << "some rows failed";
+  EXPECT_EQ(run.err,
+            "cueplan rebound: 7 rows: 2 invalid_input, 3 ok, 2 parse_error; 4 failed\n");
   EXPECT_EQ(lines_of(run.out).at(0), kBatchHeader);
   const auto rows = csv_rows(run.out);
   ASSERT_EQ(rows.size(), 7u);
@@ -319,6 +322,43 @@ TEST(Batch, OutputIsTheSameForAnyThreadCount) {
   ASSERT_EQ(two.exit_code, 0) << two.err;
   EXPECT_EQ(lines_of(one.out).size(), 61u);
   EXPECT_EQ(one.out, two.out);  // deliberate exact comparison: determinism
+}
+
+TEST(Batch, ReadsStandardInputAndSummarisesOnStderr) {
+  const fs::path input = scratch() / "good.csv";
+  write_text(input, "speed,angle_deg,topspin_k,sidespin_k\n1,45,1,0\n3,80,0,0\n");
+  const ProcessResult file = cueplan("rebound --batch '" + input.string() + "'", "file");
+  const ProcessResult piped = cueplan("rebound --batch - < '" + input.string() + "'", "stdin");
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;  // flagged (rigid limit) is not failed
+  EXPECT_EQ(piped.err, "cueplan rebound: 2 rows: 1 ok, 1 rigid_limit_exceeded; none failed\n");
+  EXPECT_EQ(piped.out, file.out);
+  EXPECT_EQ(lines_of(piped.out).size(), 3u);
+}
+
+// Rows are read, resolved and written in blocks (8192 impacts): a file longer than a
+// block gives the rows its two halves give.
+TEST(Batch, BlocksDoNotChangeTheRows) {
+  const std::string header = "speed,angle_deg,topspin_k,sidespin_k\n";
+  std::string first, second;
+  for (int i = 0; i < 9000; ++i)
+    (i < 4000 ? first : second) += fmt::format("{},{},{},{}\n", 0.2 + 0.0003 * i,
+                                               1 + 0.0197 * i, -1 + 0.0002 * i, 0.5);
+  write_text(scratch() / "whole.csv", header + first + second);
+  write_text(scratch() / "first.csv", header + first);
+  write_text(scratch() / "second.csv", header + second);
+  const std::string method = " --method paper --steps 20 --threads 2";
+  const ProcessResult whole =
+      cueplan("rebound --batch '" + (scratch() / "whole.csv").string() + "'" + method, "whole");
+  const ProcessResult a =
+      cueplan("rebound --batch '" + (scratch() / "first.csv").string() + "'" + method, "a");
+  const ProcessResult b =
+      cueplan("rebound --batch '" + (scratch() / "second.csv").string() + "'" + method, "b");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const std::vector<std::string> lines = lines_of(whole.out);
+  ASSERT_EQ(lines.size(), 9001u);
+  const std::string header_line = lines.front() + "\n";
+  ASSERT_EQ(b.out.rfind(header_line, 0), 0u);
+  EXPECT_EQ(whole.out, a.out + b.out.substr(header_line.size()));  // deliberate: determinism
 }
 
 TEST(Batch, WrongHeaderIsAWholeCommandError) {

@@ -402,7 +402,10 @@ TEST(SimulateBatch, EveryRowComesOutAndBadRowsAloneFail) {
              "0.7,-56.84,1,0\n");
   const ProcessResult run =
       cueplan("simulate '" + problem_path("near_pocket") + "' --batch '" + input.string() + "'");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.exit_code, 1) << "some rows failed";
+  EXPECT_EQ(run.err,
+            "cueplan simulate: 6 rows: 2 invalid_input, 2 parse_error, 1 pocketed, 1 rest; 4 "
+            "failed\n");
   EXPECT_EQ(lines_of(run.out).at(0), kBatchHeader);
   const auto rows = csv_rows(run.out);
   ASSERT_EQ(rows.size(), 6u);

@@ -1,0 +1,210 @@
+#!/usr/bin/env python3
+"""A position atlas with dask.distributed: for every cue-ball cell of a grid on the
+table and one or more targets, solve the problem and record whether it was solved,
+its success under a player's noise and the stroke - and draw the atlas.
+
+Dask schedules, cueplan computes: each task is one `cueplan.solve` (the Python module,
+python/), whose answer depends only on its problem and options (the evaluation budget,
+not the clock, ends each search), so the atlas is the same on one machine or many.
+
+  PYTHONPATH=build/python python3 examples/dask_atlas.py --out atlas.png
+  python3 examples/dask_atlas.py --scheduler tcp://10.0.0.5:8786 --out atlas.png
+  python3 examples/dask_atlas.py --serial --json atlas.json   # no Dask: the reference
+
+Without --scheduler a LocalCluster of --workers processes (one thread each) runs on
+this machine. Remote workers need the cueplan module on their PYTHONPATH.
+"""
+import argparse
+import json
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+
+def import_cueplan():
+    """The module from PYTHONPATH, else from this checkout's build/python (and the
+    workers this process starts inherit that path)."""
+    try:
+        import cueplan  # noqa: F401
+    except ImportError:
+        build = os.path.join(ROOT, "build", "python")
+        sys.path.insert(0, build)
+        os.environ["PYTHONPATH"] = os.pathsep.join(
+            p for p in (build, os.environ.get("PYTHONPATH")) if p)
+    import cueplan
+    return cueplan
+
+
+def cells_of(fields, grid):
+    """Cell centres (m) of an nx-by-ny grid over the playing area inside the cushions,
+    kept a ball radius and a little more from them."""
+    table = fields.get("table", {})
+    length = table.get("length", 3.569)
+    width = table.get("width", 1.778)
+    margin = 0.06
+    nx, ny = grid
+    xs = [margin + (length - 2 * margin) * (i + 0.5) / nx for i in range(nx)]
+    ys = [margin + (width - 2 * margin) * (j + 0.5) / ny for j in range(ny)]
+    return [(i, j, x, y) for j, y in enumerate(ys) for i, x in enumerate(xs)]
+
+
+def solve_cell(fields, target, cell, options):
+    """One task: the problem with the cue ball at the cell's centre, solved. Returns a
+    plain dict (what the atlas records), the same wherever it runs."""
+    import cueplan  # on a worker: imported there
+    i, j, x, y = cell
+    problem = dict(fields, cue_ball=[x, y], target=list(target))
+    record = {"cell": [i, j], "cue_ball": [x, y], "target": list(target)}
+    try:
+        r = cueplan.solve(problem, **options)
+    except cueplan.InputError as bad:  # a cue ball in a pocket's mouth, on an obstacle, ...
+        return dict(record, status="invalid_input", error=str(bad))
+    return dict(record, status=r["status"], success=r["success"]["both"]["p"],
+                miss_distance=r["miss_distance"], shot=r["shot"], stroke=r["stroke"])
+
+
+def atlas(fields, targets, grid, options, client=None):
+    """Every (target, cell) solved - by the Dask client's workers, or here in turn."""
+    jobs = [(t, c) for t in targets for c in cells_of(fields, grid)]
+    if client is None:
+        return [solve_cell(fields, t, c, options) for t, c in jobs]
+    # Scatter the problem once; one task a cell, gathered in the order submitted.
+    shared = client.scatter(fields, broadcast=True)
+    futures = [client.submit(solve_cell, shared, t, c, options, pure=False) for t, c in jobs]
+    return client.gather(futures)
+
+
+def draw(fields, targets, grid, records, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib import colors
+    import numpy as np
+
+    table = fields.get("table", {})
+    length = table.get("length", 3.569)
+    width = table.get("width", 1.778)
+    nx, ny = grid
+    fig, axes = plt.subplots(len(targets), 1, figsize=(9, 4.6 * len(targets)), squeeze=False)
+    cmap = plt.get_cmap("viridis").copy()
+    cmap.set_bad("#bbbbbb")
+    # One colour scale for every target, so their panels compare.
+    best = max([r["success"] for r in records if r["status"] == "solved"], default=1.0)
+    norm = colors.Normalize(0, max(0.05, best))
+    for axis, target in zip(axes[:, 0], targets):
+        success = np.full((ny, nx), np.nan)
+        unsolved = np.zeros((ny, nx), dtype=bool)
+        for r in records:
+            if r["target"] != list(target):
+                continue
+            i, j = r["cell"]
+            if r["status"] == "solved":
+                success[j, i] = r["success"]
+            elif r["status"] != "invalid_input":
+                unsolved[j, i] = True
+                success[j, i] = 0.0
+        margin = 0.06
+        extent = (margin, length - margin, margin, width - margin)
+        image = axis.imshow(np.ma.masked_invalid(success), origin="lower", extent=extent, cmap=cmap,
+                            norm=norm,
+                            interpolation="nearest")
+        for j in range(ny):
+            for i in range(nx):
+                if unsolved[j, i]:
+                    x = margin + (length - 2 * margin) * (i + 0.5) / nx
+                    y = margin + (width - 2 * margin) * (j + 0.5) / ny
+                    axis.plot(x, y, "x", color="white", markersize=5)
+        axis.add_patch(plt.Rectangle((0, 0), length, width, fill=False, lw=2, color="#3b2410"))
+        for px, py in [(0, 0), (length / 2, 0), (length, 0), (0, width), (length / 2, width), (length, width)]:
+            axis.add_patch(plt.Circle((px, py), 0.045, color="black"))
+        axis.plot(*target, marker="*", color="#ff3030", markersize=16, markeredgecolor="white")
+        axis.set_xlim(-0.08, length + 0.08)
+        axis.set_ylim(-0.08, width + 0.08)
+        axis.set_aspect("equal")
+        axis.set_xlabel("x (m)")
+        axis.set_ylabel("y (m)")
+        solved = sum(1 for r in records if r["target"] == list(target) and r["status"] == "solved")
+        axis.set_title(f"Target ({target[0]:.2f}, {target[1]:.2f}) m: {solved} of {nx * ny} cue-ball cells solved")
+        fig.colorbar(image, ax=axis, label="success under a player's noise (fraction)", shrink=0.85)
+    fig.suptitle("Position atlas: where the cue ball can be left on the target from each cell\n"
+                 "(grey: no problem there; x: no stroke found)", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster)")
+    p.add_argument("--workers", type=int, default=2, help="LocalCluster worker processes (2)")
+    p.add_argument("--serial", action="store_true", help="no Dask: solve every cell here, in turn")
+    p.add_argument("--problem", default=os.path.join(ROOT, "problems", "one_rail_position.yaml"),
+                   help="problem file whose table, limits and physics the atlas uses")
+    p.add_argument("--target", action="append", type=lambda s: [float(v) for v in s.split(",")],
+                   help="target X,Y (m); repeat for several (default: the problem's)")
+    p.add_argument("--grid", nargs=2, type=int, default=[12, 6], metavar=("NX", "NY"),
+                   help="cue-ball cells along the length and the width (12 6)")
+    p.add_argument("--max-evaluations", type=int, default=600)
+    p.add_argument("--samples", type=int, default=50)
+    p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--method", default="table", help="cushion impacts: table (fast) or exact")
+    p.add_argument("--out", help="the atlas as a picture (PNG, SVG or PDF)")
+    p.add_argument("--json", help="the atlas's records as JSON")
+    return p.parse_args(argv)
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    cueplan = import_cueplan()
+    fields = cueplan.read_problem(args.problem)
+    targets = args.target or [fields["target"]]
+    # The evaluation budget, never the clock, ends each search: the atlas is reproducible.
+    options = dict(method=args.method, max_evaluations=args.max_evaluations, samples=args.samples,
+                   seed=args.seed, max_time=3600, alternatives=0)
+    # One solve here first: a first use of the table method builds and caches the impact
+    # table once, so local workers load it instead of each building it.
+    solve_cell(fields, targets[0], cells_of(fields, args.grid)[0], options)
+
+    if args.serial:
+        started = time.perf_counter()
+        records = atlas(fields, targets, args.grid, options)
+        seconds = time.perf_counter() - started
+        where = "serial"
+    else:
+        from dask.distributed import Client, LocalCluster
+        if args.scheduler:
+            client = Client(args.scheduler)
+            cluster = None
+        else:
+            cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            client = Client(cluster)
+        with client:
+            workers = len(client.scheduler_info()["workers"])
+            # Every worker imports the module and loads its impact table before the clock
+            # starts: the time is the atlas's, not the cluster's start.
+            client.run(solve_cell, fields, targets[0], cells_of(fields, args.grid)[0], options)
+            started = time.perf_counter()
+            records = atlas(fields, targets, args.grid, options, client)
+            seconds = time.perf_counter() - started
+            where = f"{workers} Dask workers ({args.scheduler or 'LocalCluster'})"
+        if cluster is not None:
+            cluster.close()
+    cells = len(records)
+    solved = sum(1 for r in records if r["status"] == "solved")
+    print(f"atlas: {cells} problems ({args.grid[0]} x {args.grid[1]} cells x {len(targets)} targets) "
+          f"solved on {where} in {seconds:.2f} s ({cells / seconds:.2f} problems/s); {solved} solved")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"grid": args.grid, "targets": targets, "options": options, "records": records}, f)
+    if args.out:
+        draw(fields, targets, args.grid, records, args.out)
+        print(f"atlas: drawn to {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
