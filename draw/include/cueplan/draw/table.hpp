@@ -35,7 +35,7 @@ struct DrawnPath {
   int stroke = 0;      // > 0: the stroke's number, written on the table at its start
   // Drawn in this colour (an object ball's own), edged dark, dashed while the ball
   // slides; empty: in the sliding and rolling colours (the cue ball's).
-  std::optional<Colour> colour;
+  std::optional<Colour> colour = std::nullopt;
 };
 
 // A ball on the table: where it stands and how it moves, stroke after stroke. It is drawn
