@@ -288,6 +288,10 @@ def check_pot_example(driver, shots):
     pocket = Select(driver.find_element(By.ID, "pot-pocket")).first_selected_option
     if ball.get_attribute("value") != "blue" or pocket.get_attribute("value") != "top_right":
         fail(f"the pot offered is {ball.text!r} into {pocket.text!r}, the file says blue, top_right")
+    # Nothing the previous checks started may still be on its way (a map refresh would
+    # set the stroke controls to its planner's stroke).
+    time.sleep(1.0)
+    wait_for(driver, "the page to be idle", lambda d: not d.find_element(By.ID, "busy").is_displayed())
     # k_T = -1.2, k_S = 0.2 are tip offsets of 2/5 k: 0.48 R below, 0.08 R right.
     for field, value in (("speed", "2.86"), ("aim", "23.88"), ("tip-right", "0.08"), ("tip-up", "-0.48")):
         driver.execute_script(

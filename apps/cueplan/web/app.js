@@ -142,6 +142,7 @@ function selectExample(index) {
   const e = state.examples[index];
   state.example = e;
   state.map = null;
+  clearTimeout(mapTimer);  // a refresh of the old problem's map still waiting
   state.mapAbort?.abort();
   $("spin-disc").toggleAttribute("hidden", true);
   $("map-speed-field").hidden = true;
@@ -567,7 +568,8 @@ function showMap(map) {
 let mapTimer = null;
 function refreshMap() {
   clearTimeout(mapTimer);
-  mapTimer = setTimeout(requestMap, MAP_DEBOUNCE_MS);
+  // Only a map on show is refreshed (an example chosen since has none).
+  mapTimer = setTimeout(() => state.map && requestMap(), MAP_DEBOUNCE_MS);
 }
 
 function cellText(cell) {
