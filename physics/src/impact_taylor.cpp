@@ -88,16 +88,35 @@ constexpr double kMarginRounding = 1e-12;
 constexpr double kRegI = 0.3;
 
 // The polynomial c[0..degree] re-expanded about x0: out[j] is the coefficient of
-// (h - x0)^j (repeated synthetic division).
+// (h - x0)^j (repeated synthetic division: pass i sets out[k] += out[k + 1] x0 for k
+// from degree - 1 down to i). Passes run four at a time in one sweep, pass i + p a
+// step behind pass i + p - 1, each carrying its newest value in a register: four
+// independent chains, the same operations in the same order within each pass.
 void shift_to(const double* c, int degree, double x0, double* out) {
   for (int j = 0; j <= degree; ++j) out[j] = c[j];
-  for (int i = 0; i < degree; ++i)
+  constexpr int kFused = 4;
+  int i = 0;
+  for (; i + kFused <= degree; i += kFused) {
+    double carry[kFused];  // pass i + p's value at index k + p + 1
+    for (double& v : carry) v = out[degree];
+    int k = degree - 1;
+    for (; k > degree - kFused; --k)  // pass i + p starts at k = degree - 1 - p
+      for (int p = degree - 1 - k; p >= 0; --p)
+        carry[p] = (p == 0 ? out[k] : carry[p - 1]) + carry[p] * x0;
+    for (; k >= i; --k) {
+      for (int p = kFused - 1; p > 0; --p) carry[p] = carry[p - 1] + carry[p] * x0;
+      carry[0] = out[k] + carry[0] * x0;
+      out[k + kFused - 1] = carry[kFused - 1];
+    }
+    for (int p = 0; p < kFused - 1; ++p) out[i + p] = carry[p];
+  }
+  for (; i < degree; ++i)
     for (int k = degree - 1; k >= i; --k) out[k] += out[k + 1] * x0;
 }
 
 // The state at h from a step's series.
 void state_at(const Coefficients<double>& s, int degree, double h, double q[kState]) {
-  for (int c = 0; c < kState; ++c) q[c] = poly_at(s.c[c], degree, h);
+  polys_at<kState>(s.c[0], kTerms, degree, h, q);
 }
 
 double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
@@ -970,16 +989,17 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   enum Event { kImpactEnd, kSlipZeroI, kSlipZeroC, kBreakI, kBreakC, kEvents };
   double when[kEvents];
   std::fill(when, when + kEvents, INFINITY);
-  double poly[kTerms] = {};
+  double poly[kTerms];  // coefficients 0 .. deg of the event at hand
+  poly[0] = 0.0;  // (each use sets it first; this tells the compiler so)
   double compression_end = INFINITY, work_c = 0.0, impulse_c = 0.0;
-  double rest[kTerms] = {};  // work since the end of compression, about it
+  double rest[kTerms];  // work since the end of compression, about it
   // The state at the step's full length: where no event function changes sign on it,
   // that is where the step ends.
   double at_h[kState];
   state_at(s, deg, h, at_h);
   if (compressing_) {
-    for (int j = 0; j <= deg; ++j) poly[j] = (s.c[kYC][j] - s.c[kYI][j]) * k_.inv_1ps;
     if ((at_h[kYC] - at_h[kYI]) * k_.inv_1ps <= 0.0) {
+      for (int j = 0; j <= deg; ++j) poly[j] = (s.c[kYC][j] - s.c[kYI][j]) * k_.inv_1ps;
       compression_end = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
       work_c = poly_at(s.c[kW], deg, compression_end);
       impulse_c = poly_at(s.c[kP], deg, compression_end);
@@ -1027,7 +1047,7 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   for (double w : when) end = std::min(end, w);
   auto at_end = [&](int event) { return when[event] <= end * (1.0 + 1e-12); };
 
-  record_trace(&s, n, end);
+  if (trace_) record_trace(&s, n, end);
   if (end == h)
     std::copy(at_h, at_h + kState, q_);
   else

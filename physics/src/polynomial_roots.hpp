@@ -80,23 +80,41 @@ inline int roots_in(const double* c, int degree, double lo, double hi, double* o
 // Series polynomials (the Taylor methods' steps): degree below kMaxSeriesTerms.
 constexpr int kMaxSeriesTerms = 32;
 
-// The polynomial c[0..degree] at h, as four interleaved Horner chains in h^4 (the
-// coefficients of each residue of the power mod 4): a quarter of Horner's chain of
-// dependent multiply-adds.
-inline double poly_at(const double* c, int degree, double h) {
+// K polynomials of one degree at h, the k-th at c + k * stride: out[k]. Each is four
+// interleaved Horner chains in h^4 (the coefficients of each residue of the power mod
+// 4), a quarter of Horner's chain of dependent multiply-adds, held as two SIMD pairs;
+// the K polynomials' chains run side by side. Every value is the same IEEE operations
+// as the scalar chains', lane by lane.
+template <int K>
+inline void polys_at(const double* c, int stride, int degree, double h, double* out) {
+  typedef double Pair __attribute__((vector_size(16)));
   const double h2 = h * h, h4 = h2 * h2;
+  const Pair h4s = {h4, h4};
   const int top = degree / 4;
-  double a0 = c[4 * top];
-  double a1 = 4 * top + 1 <= degree ? c[4 * top + 1] : 0.0;
-  double a2 = 4 * top + 2 <= degree ? c[4 * top + 2] : 0.0;
-  double a3 = 4 * top + 3 <= degree ? c[4 * top + 3] : 0.0;
-  for (int i = top - 1; i >= 0; --i) {
-    a0 = a0 * h4 + c[4 * i];
-    a1 = a1 * h4 + c[4 * i + 1];
-    a2 = a2 * h4 + c[4 * i + 2];
-    a3 = a3 * h4 + c[4 * i + 3];
+  const int rest = degree - 4 * top;  // terms above 4 top
+  Pair lo[K], hi[K];  // chains 0 and 1, 2 and 3
+  for (int k = 0; k < K; ++k) {
+    const double* t = c + k * stride + 4 * top;
+    lo[k] = Pair{t[0], rest >= 1 ? t[1] : 0.0};
+    hi[k] = Pair{rest >= 2 ? t[2] : 0.0, rest >= 3 ? t[3] : 0.0};
   }
-  return (a0 + h * a1) + h2 * (a2 + h * a3);
+  for (int i = top - 1; i >= 0; --i) {
+    for (int k = 0; k < K; ++k) {
+      Pair a, b;
+      __builtin_memcpy(&a, c + k * stride + 4 * i, sizeof a);
+      __builtin_memcpy(&b, c + k * stride + 4 * i + 2, sizeof b);
+      lo[k] = lo[k] * h4s + a;
+      hi[k] = hi[k] * h4s + b;
+    }
+  }
+  for (int k = 0; k < K; ++k) out[k] = (lo[k][0] + h * lo[k][1]) + h2 * (hi[k][0] + h * hi[k][1]);
+}
+
+// The polynomial c[0..degree] at h.
+inline double poly_at(const double* c, int degree, double h) {
+  double v;
+  polys_at<1>(c, 0, degree, h, &v);
+  return v;
 }
 
 // A root in (0, h] of the polynomial c with c(0) > 0 >= c(h), to 1e-15 of h (the
