@@ -121,21 +121,34 @@ void state_at(const Coefficients<double>& s, int degree, double h, double q[kSta
 
 double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
-// x^(-1/n) for x > 0 to about 1e-4 relative (a step size needs no more), from the
-// binary exponent and short polynomials for log2 on [1, 2) and 2^f on [0, 1).
+// Two doubles, or two 64-bit integers, side by side in a SIMD register.
+typedef double Pair __attribute__((vector_size(16)));
+typedef int64_t IntPair __attribute__((vector_size(16)));
+typedef uint64_t BitPair __attribute__((vector_size(16)));
+
+Pair abs(Pair x) { return reinterpret_cast<Pair>(reinterpret_cast<BitPair>(x) & ~(1ULL << 63)); }
+
+// x^(-1/n) for x in [1e-300, 1e300] to about 1e-4 relative (a step size needs no
+// more), from the binary exponent and short polynomials for log2 on [1, 2) and 2^f on
+// [0, 1); two at once, lane by lane.
+Pair inverse_roots(Pair x, Pair n) {
+  const BitPair bits = reinterpret_cast<BitPair>(x);
+  const IntPair exponent = reinterpret_cast<IntPair>((bits >> 52) & 0x7ff) - 1023;
+  const Pair m = reinterpret_cast<Pair>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
+  const Pair t = m - 1.0;  // log2(1 + t), t in [0, 1)
+  const Pair log2m =
+      t * (1.4425449 + t * (-0.7181452 + t * (0.4575485 + t * (-0.2779042 + t * 0.0958945))));
+  const Pair y = -(__builtin_convertvector(exponent, Pair) + log2m) / n;  // |y| < 1000 / n
+  const IntPair whole = __builtin_convertvector(y + 1100.0, IntPair) - 1100;  // floor(y)
+  const Pair f = y - __builtin_convertvector(whole, Pair);  // 2^f, f in [0, 1)
+  const Pair p = 1.0 + f * (0.6931472 + f * (0.2402265 + f * (0.0555041 + f * (0.0096181 + f * 0.0013333))));
+  return p * reinterpret_cast<Pair>((whole + 1023) << 52);
+}
+
+// x^(-1/n) for x > 0 (std::pow outside [1e-300, 1e300]).
 double inverse_root(double x, int n) {
   if (!(x >= 1e-300 && x <= 1e300)) return std::pow(x, -1.0 / n);
-  const uint64_t bits = std::bit_cast<uint64_t>(x);
-  const int exponent = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
-  const double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
-  const double t = m - 1.0;  // log2(1 + t), t in [0, 1)
-  const double log2m =
-      t * (1.4425449 + t * (-0.7181452 + t * (0.4575485 + t * (-0.2779042 + t * 0.0958945))));
-  const double y = -(exponent + log2m) / n;  // |y| < 1000 / n
-  const int whole = static_cast<int>(y + 1100.0) - 1100;  // floor(y)
-  const double f = y - whole;  // 2^f, f in [0, 1)
-  const double p = 1.0 + f * (0.6931472 + f * (0.2402265 + f * (0.0555041 + f * (0.0096181 + f * 0.0013333))));
-  return p * std::bit_cast<double>(static_cast<uint64_t>(whole + 1023) << 52);
+  return inverse_roots(Pair{x, x}, Pair{1.0 * n, 1.0 * n})[0];
 }
 
 // |(x, y)| (the slips and frictions here are far from overflow and underflow).
@@ -723,18 +736,24 @@ double Integrator::slip_size(int contact) const {
   return contact == kI ? norm(q_[kXI], q_[kYI]) : norm(q_[kXC], q_[kYC]);
 }
 
-// A slipping contact's direction: its slip's, or for a young one its seed.
-Direction Integrator::direction(int contact) const {
+Integrator::Shape Integrator::shape(int contact) const {
   const double x = q_[contact == kI ? kXI : kXC], y = q_[contact == kI ? kYI : kYC];
   const double r = norm(x, y);
-  if (mode_[contact].young || !(r > 0.0)) return mode_[contact].seed;
-  return {x / r, y / r};
+  return {r, x / r, y / r};
 }
 
-// Rates of the slips per unit P at the current state: x_I, y_I', x_C, y_C.
+// A slipping contact's direction: its slip's, or for a young one its seed.
+Direction Integrator::direction(int contact) const { return direction(contact, shape(contact)); }
+
+Direction Integrator::direction(int contact, const Shape& shape) const {
+  if (mode_[contact].young || !(shape.r > 0.0)) return mode_[contact].seed;
+  return {shape.ex, shape.ey};
+}
+
+// Rates of the slips per unit P at the state plan_step plans from: x_I, y_I', x_C, y_C.
 void Integrator::slip_rates(double rates[4]) const {
-  const Friction f =
-      friction_for(g_, {mode_[kI].stick, mode_[kC].stick}, direction(kI), direction(kC));
+  const Friction f = friction_for(g_, {mode_[kI].stick, mode_[kC].stick},
+                                  direction(kI, planned_[kI]), direction(kC, planned_[kC]));
   const Rates r = rates_for(g_, f);
   rates[0] = r.ux + r.oy * g_.s - r.oz * g_.c;
   rates[1] = -r.uy * g_.s + r.ox;
@@ -886,6 +905,7 @@ void Integrator::settle_modes(bool force_slip_i, bool force_slip_c) {
 
 // Chooses the next step's variable and kernel.
 Kernel Integrator::plan_step() {
+  for (int i = 0; i < 2; ++i) planned_[i] = shape(i);  // (take_step reads them too)
   plan_ = Plan{};
   plan_.young = (slipping(kI) && mode_[kI].young) || (slipping(kC) && mode_[kC].young);
   if (plan_.young) return Kernel::general;
@@ -895,7 +915,7 @@ Kernel Integrator::plan_step() {
     if (!slipping(i)) continue;
     const double x = q_[i == kI ? kXI : kXC], y = q_[i == kI ? kYI : kYC];
     const double dx = rate[2 * i], dy = rate[2 * i + 1];
-    const double r = norm(x, y), speed = norm(dx, dy);
+    const double r = planned_[i].r, speed = norm(dx, dy);
     const double closing = -(x * dx + y * dy) / r;  // -d|u|/dP
     // Heading straight for zero within reach: step in P and land on the root - unless
     // it is there within rounding of its rate, where the quotient u / |u| would divide
@@ -945,19 +965,28 @@ void Integrator::finish_fast_step(const Coefficients<double>& series) {
 
 // The step's length from its last two coefficients: the largest h at which each is
 // within the tolerance (never below the rounding of the state).
+// (Both orders side by side: worst = (order n, order n + 1).)
 double Integrator::step_size(const Coefficients<double>& s, int n) const {
-  double worst_n = 0.0, worst_n1 = 0.0;
+  const double tol = set_.tolerance;
+  Pair worst = {0.0, 0.0};
   for (int q = 0; q < kState; ++q) {
     const double floor = 4.0 * kEpsilon * std::abs(s.c[q][0]);
-    const double scale = floor > set_.tolerance ? set_.tolerance / floor : 1.0;
-    worst_n = std::max(worst_n, std::abs(s.c[q][n]) * scale);
-    worst_n1 = std::max(worst_n1, std::abs(s.c[q][n + 1]) * scale);
+    const double scale = floor > tol ? tol / floor : 1.0;
+    Pair last;
+    __builtin_memcpy(&last, &s.c[q][n], sizeof last);
+    const Pair v = abs(last) * scale;
+    worst = worst < v ? v : worst;  // std::max, lane by lane
   }
-  worst_n /= set_.tolerance;
-  worst_n1 /= set_.tolerance;
+  worst /= tol;
   double h = INFINITY;
-  if (worst_n > 0.0) h = std::min(h, inverse_root(worst_n, n));
-  if (worst_n1 > 0.0) h = std::min(h, inverse_root(worst_n1, n + 1));
+  if (worst[0] >= 1e-300 && worst[0] <= 1e300 && worst[1] >= 1e-300 && worst[1] <= 1e300) {
+    const Pair r = inverse_roots(worst, Pair{1.0 * n, n + 1.0});
+    h = std::min(h, r[0]);
+    h = std::min(h, r[1]);
+    return h;
+  }
+  if (worst[0] > 0.0) h = std::min(h, inverse_root(worst[0], n));
+  if (worst[1] > 0.0) h = std::min(h, inverse_root(worst[1], n + 1));
   return h;
 }
 
@@ -1021,8 +1050,7 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
     if (slipping(i) && !mode_[i].young && !plan_.reg[i]) {
       // A slip stepped in P reaches zero where its component along its first
       // direction does, and it is zero there (else it only passes by).
-      const double r0 = std::sqrt(q_[ix] * q_[ix] + q_[iy] * q_[iy]);
-      const double ex = q_[ix] / r0, ey = q_[iy] / r0;
+      const double ex = planned_[i].ex, ey = planned_[i].ey;
       if (ex * at_h[ix] + ey * at_h[iy] <= 0.0) {
         for (int j = 0; j <= deg; ++j) poly[j] = ex * s.c[ix][j] + ey * s.c[iy][j];
         const double at = root_in(poly, deg, h);

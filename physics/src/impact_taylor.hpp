@@ -63,13 +63,20 @@ class Integrator {
     bool reg[2] = {false, false};  // dP/dsigma includes |u_I|, |u_C|
     bool young = false;            // a contact starts from zero slip: a step in P
   };
+  // A contact's slip size |u| and direction u / |u| (NaN where |u| = 0).
+  struct Shape {
+    double r = 0.0;
+    double ex = 0.0, ey = 0.0;
+  };
   class General;  // the kernel for every other kind of step (impact_taylor.cpp)
 
   Scaled centroid(const double* q) const;
   bool slipping(int contact) const { return !mode_[contact].stick; }
   double slip_size(int contact) const;
   void slip_rates(double rates[4]) const;
+  Shape shape(int contact) const;
   Direction direction(int contact) const;
+  Direction direction(int contact, const Shape& shape) const;
   bool stick_would_hold(int contact) const;
   double stick_margin_at(int contact, const double* q) const;
   double margin_of(int contact, const Friction& f) const;
@@ -90,6 +97,7 @@ class Integrator {
   double q_[kState] = {};  // x_I, y_I', x_C, y_C, o_z, W of the phase, p
   ContactMode mode_[2];
   Plan plan_;
+  Shape planned_[2];  // the slips' shapes in the state plan_step planned from
   bool compressing_ = true;
   bool done_ = false;
   double work_compression_ = 0.0;
