@@ -1,10 +1,12 @@
 #include "cueplan/physics/cushion_impact.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "cueplan/physics/impact_table.hpp"
 #include "impact_methods.hpp"
@@ -312,8 +314,9 @@ ImpactResult complete(const CushionParams& params, const BallState& incoming,
   r.method_used = prep.method;
   if (r.status == ImpactStatus::ok && incoming.velocity.y > params.rigid_speed_limit) {
     r.status = ImpactStatus::rigid_limit_exceeded;
-    r.message = fmt::format("velocity.y is above the rigid-cushion limit (m/s), got {:.10g}",
-                            incoming.velocity.y);
+    r.message = fmt::format(
+        FMT_COMPILE("velocity.y is above the rigid-cushion limit (m/s), got {:.10g}"),
+        incoming.velocity.y);
   }
   return r;
 }
@@ -342,7 +345,7 @@ class BatchSource final : public detail::BatchImpacts {
  public:
   BatchSource(const CushionParams& params, std::span<const BallState> in,
               std::span<ImpactResult> out, const ImpactOptions& options)
-      : params_(params), in_(in), out_(out), options_(options) {}
+      : params_(params), in_(in), out_(out), options_(options), speed_scale_(in.size()) {}
 
   bool next(detail::ScaledImpact* impact, size_t* id) override {
     while (next_ < in_.size()) {
@@ -355,6 +358,7 @@ class BatchSource final : public detail::BatchImpacts {
       else {
         *impact = prep.impact;
         *id = i;
+        speed_scale_[i] = prep.impact.speed_scale;
         return true;
       }
     }
@@ -363,7 +367,7 @@ class BatchSource final : public detail::BatchImpacts {
 
   void done(size_t id, const detail::ScaledOutcome& outcome) override {
     Prepared prep;  // what complete reads of it: the method (exact) and the speed scale
-    prep.impact.speed_scale = speed_scale(in_[id]);
+    prep.impact.speed_scale = speed_scale_[id];
     out_[id] = complete(params_, in_[id], prep, outcome, nullptr, 0);
   }
 
@@ -372,6 +376,7 @@ class BatchSource final : public detail::BatchImpacts {
   std::span<const BallState> in_;
   std::span<ImpactResult> out_;
   const ImpactOptions& options_;
+  std::vector<double> speed_scale_;  // of the impacts handed to the lanes
   size_t next_ = 0;
 };
 
