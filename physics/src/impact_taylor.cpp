@@ -288,6 +288,13 @@ class Integrator::General {
   // d(young slips' rates at order k) / d(their directions' coefficient of order k):
   // the same at every order k >= 1 (it is the order-0 Jacobian).
   double jacobian_[4][4] = {};
+  // The same for every value rates() writes at order k (the friction series, dP/dsigma,
+  // the rates): each is affine in those coefficients with the same slope at every
+  // order, so the solution of an order moves them without another evaluation.
+  static constexpr int kSeriesArrays = 12;
+  static constexpr int kAffine = kSeriesArrays + kState;
+  double slope_[kAffine][4] = {};
+  void affine_values(int k, const double rate[kState], double out[kAffine]);
   int evaluations_ = 0;
   double uy_[kTerms] = {};
   double fix_[kTerms] = {}, fiy_[kTerms] = {}, fcx_[kTerms] = {}, fcy_[kTerms] = {};
@@ -299,19 +306,35 @@ class Integrator::General {
 };
 
 // |u| and u / |u| at order k from the series (x, y) (k >= 1; order 0 set by the caller).
+// The sums run over pairs (j, k - j) and in two halves: short dependency chains, which
+// is what a young step's time goes to.
 void Integrator::General::slip_recurrence(ContactSeries& X, const double* x, const double* y,
                                           int k) {
-  double sum = 0.0;
-  for (int j = 0; j <= k; ++j) sum += x[j] * x[k - j] + y[j] * y[k - j];
-  for (int j = 1; j < k; ++j) sum -= X.r[j] * X.r[k - j];
-  X.r[k] = 0.5 * sum / X.r[0];
-  double tx = x[k], ty = y[k];
-  for (int j = 1; j <= k; ++j) {
-    tx -= X.r[j] * X.ex[k - j];
-    ty -= X.r[j] * X.ey[k - j];
+  const double inv = 1.0 / X.r[0];
+  // |u|^2 at order k less the products r_j r_{k-j}, 0 < j < k (each pair once, doubled).
+  double sx = 0.0, sy = 0.0, sr = 0.0;
+  int j = 0;
+  for (; 2 * j < k; ++j) {
+    sx += x[j] * x[k - j];
+    sy += y[j] * y[k - j];
+    if (j > 0) sr += X.r[j] * X.r[k - j];
   }
-  X.ex[k] = tx / X.r[0];
-  X.ey[k] = ty / X.r[0];
+  double sum = 2.0 * ((sx + sy) - sr);
+  if (2 * j == k) sum += x[j] * x[j] + y[j] * y[j] - X.r[j] * X.r[j];
+  X.r[k] = 0.5 * sum * inv;
+  double tx0 = x[k], ty0 = y[k], tx1 = 0.0, ty1 = 0.0;
+  for (j = 1; j + 1 <= k; j += 2) {
+    tx0 -= X.r[j] * X.ex[k - j];
+    ty0 -= X.r[j] * X.ey[k - j];
+    tx1 += X.r[j + 1] * X.ex[k - j - 1];
+    ty1 += X.r[j + 1] * X.ey[k - j - 1];
+  }
+  if (j == k) {
+    tx0 -= X.r[k] * X.ex[0];
+    ty0 -= X.r[k] * X.ey[0];
+  }
+  X.ex[k] = (tx0 - tx1) * inv;
+  X.ey[k] = (ty0 - ty1) * inv;
 }
 
 // u_y and the slipping (not young) contacts' |u|, e at order k.
@@ -567,15 +590,27 @@ void Integrator::General::measure_jacobian(double rate[kState]) {
       out[2 * i + 1] = rate[at_i ? kYI : kYC];
     }
   };
+  double base_all[kAffine], moved_all[kAffine];
   young_trial(1, zero);
   young_rates(base);
+  affine_values(1, rate, base_all);
   for (int j = 0; j < dim; ++j) {
     young_trial(1, zero);
     ContactSeries& Y = c_[young_[j / 2]];
     (j % 2 == 0 ? Y.ex[1] : Y.ey[1]) += 1.0;
     young_rates(moved);
+    affine_values(1, rate, moved_all);
     for (int r = 0; r < dim; ++r) jacobian_[r][j] = moved[r] - base[r];
+    for (int r = 0; r < kAffine; ++r) slope_[r][j] = moved_all[r] - base_all[r];
   }
+}
+
+// Every value rates(k) writes: its series' coefficients of order k, then the rates.
+void Integrator::General::affine_values(int k, const double rate[kState], double out[kAffine]) {
+  const double* series[kSeriesArrays] = {fix_, fiy_, fcx_, fcy_, pc_, num_,
+                                         den_, rho_, Fix_, Fiy_, Fcx_, Fcy_};
+  for (int a = 0; a < kSeriesArrays; ++a) out[a] = series[a][k];
+  for (int q = 0; q < kState; ++q) out[kSeriesArrays + q] = rate[q];
 }
 
 // Solves order k (>= 1) of the young slips: the residual at zero unknowns, the
@@ -624,7 +659,41 @@ bool Integrator::General::young_order(int k, double rate[kState]) {
   if (!solve_linear(dim, a, b, z)) return false;
   for (int i = 0; i < young_count_; ++i)
     if (c_[young_[i]].young == 2 && k == 1 && !(z[2 * i] > 0.0)) return false;  // not growing
-  young_residual(k, z, res, rate);
+  if (k == 1) {
+    young_residual(k, z, res, rate);
+  } else {
+    // The young series at the solution, and what rates(k) would write there: its
+    // values at zero unknowns moved along their slopes by the directions' change.
+    double move[4] = {};
+    for (int m = 0; m < dim; ++m)
+      for (int c = 0; c < dim; ++c) move[m] += de[m][c] * z[c];
+    bool linear = true;
+    for (int i = 0; i < young_count_; ++i) linear = linear && c_[young_[i]].young == 1;
+    if (linear) {
+      // v_k = z: |v|_k moves by e0 . z, e_k by (I - e0 e0^T) z / |v|_0 (de z).
+      for (int i = 0; i < young_count_; ++i) {
+        ContactSeries& Y = c_[young_[i]];
+        const double z0 = z[2 * i], z1 = z[2 * i + 1];
+        Y.vx[k] = z0;
+        Y.vy[k] = z1;
+        Y.r[k] += Y.e0x * z0 + Y.e0y * z1;
+        Y.ex[k] += move[2 * i];
+        Y.ey[k] += move[2 * i + 1];
+      }
+    } else {
+      young_trial(k, z);
+    }
+    double* series[kSeriesArrays] = {fix_, fiy_, fcx_, fcy_, pc_, num_,
+                                     den_, rho_, Fix_, Fiy_, Fcx_, Fcy_};
+    for (int r = 0; r < kAffine; ++r) {
+      double v = 0.0;
+      for (int m = 0; m < dim; ++m) v += slope_[r][m] * move[m];
+      if (r < kSeriesArrays)
+        series[r][k] += v;
+      else
+        rate[r - kSeriesArrays] += v;
+    }
+  }
   for (int i = 0; i < young_count_; ++i) {
     ContactSeries& Y = c_[young_[i]];
     if (Y.young == 2) Y.b[k] = k == 1 ? z[2 * i + 1] * z[2 * i] : z[2 * i + 1];

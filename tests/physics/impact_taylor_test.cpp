@@ -89,6 +89,65 @@ TEST(TaylorImpact, AgreesWithExtrapolationAtNaturalRoll) {
   RecordProperty("worst_difference", scientific(worst));
 }
 
+// Slips growing from zero (the cloth's at natural roll; the cushion's where its stick
+// breaks, common with high friction and low restitution) are stepped in P with the
+// young-slip series, whose orders are solved one by one; at the default tolerance the
+// outcome lies within 1e-11 of V0 of the extrapolation method converged.
+TEST(TaylorImpact, YoungSlipsAgreeWithAConvergedRun) {
+  CushionParams sticky;
+  sticky.mu_cushion = 0.35;
+  sticky.mu_table = 0.6;
+  sticky.restitution = 0.3;
+  struct Case {
+    const char* name;
+    CushionParams p;
+    bool natural_roll;
+  };
+  for (const Case& c : {Case{"natural roll", CushionParams{}, true}, Case{"sticky", sticky, false},
+                        Case{"sticky, natural roll", sticky, true}}) {
+    double worst = 0.0;
+    int breaks = 0;
+    for (const BallState& in : uniform_domain(300, c.natural_roll, 31)) {
+      const ImpactResult t = with(ImpactMethod::exact, c.p, in);
+      ASSERT_TRUE(usable(t.status)) << t.message;
+      ImpactOptions converged;
+      converged.method = ImpactMethod::extrapolation;
+      converged.tolerance = 1e-14;
+      converged.max_steps = 1000000;
+      const ImpactResult x = resolve_impact(c.p, in, converged);
+      ASSERT_TRUE(usable(x.status)) << x.message;
+      breaks += t.transition_count >= 2;
+      worst = std::max(worst, state_difference(c.p, t, x, speed_of(in)));
+    }
+    EXPECT_LE(worst, 1e-11) << c.name;
+    if (!c.natural_roll) {
+      EXPECT_GE(breaks, 10) << c.name << ": sticks that break";
+    }
+    RecordProperty(std::string("worst_difference ") + c.name, scientific(worst));
+  }
+}
+
+// A young step evaluates each of its N + 1 orders once: the order's solution moves the
+// rates it evaluated at zero unknowns along their slopes (measured at order 1), instead
+// of evaluating them again. Beyond the N + 1 orders of each step, natural roll costs the
+// young step's order 0 (its direction, here already exact) and order 1 (the slopes:
+// one evaluation per unknown, and the solution): at most 10 evaluations in all; with
+// the rates evaluated twice per order the excess was N + 7 = 23.
+TEST(TaylorImpact, NaturalRollYoungStepEvaluatesEachOrderOnce) {
+  const CushionParams p;
+  const int order_terms = 17;  // order 16 at the default tolerance 1e-12
+  for (const BallState& in : uniform_domain(200, true, 1963)) {
+    std::vector<TraceSample> trace;
+    ImpactOptions o;
+    o.trace = &trace;
+    const ImpactResult r = resolve_impact(p, in, o);
+    ASSERT_TRUE(usable(r.status)) << r.message;
+    const int steps = (static_cast<int>(trace.size()) - 1) / 8;  // 8 samples a step
+    EXPECT_LE(r.rhs_evaluations - order_terms * steps, 10);
+    EXPECT_GE(r.rhs_evaluations - order_terms * steps, 0);
+  }
+}
+
 // Natural roll is the limit of a small cloth slip: the outcome varies like d log d in
 // d = k_T - 1, so at d = +-1e-13 it moves by about 3e-12. The two sides are stepped by
 // other code than k_T = 1 (an ordinary slip, regularised, from a size of 1e-13).
