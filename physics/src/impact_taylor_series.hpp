@@ -188,6 +188,12 @@ template <class T>
 // same terms in the same order as a single loop would: the head from zero, oldest
 // index pair first, then the newest terms.
 
+// For one impact (T = double) the sums are formed ahead as above; for a batch (T a
+// vector of impacts) the chain is already as wide as the vector, the kernel is bound by
+// its throughput, and each order forms its sums where it needs them (fewer values kept).
+template <class T>
+constexpr bool kAhead = std::is_same_v<T, double>;
+
 // The head of sum_{j=1}^{m-1} a[j] * b[m-j]: from zero, j = 2 .. m - 2 (indices <= m - 2).
 template <class Q>
 [[gnu::always_inline]] inline Q head_sum(int m, const Q* a, const Q* b) {
@@ -318,6 +324,20 @@ template <class T, class Q>
   T xi = at(a.u0, 0), yi = at(a.u0, 1), xc = xc0, yc = yc0;  // u_m
   T si = zero, sc = zero;                                      // the sums of order m
   T t0 = zero, t1 = zero, t2 = zero, g0 = zero, g1 = zero, g2 = zero, g3 = zero;
+  // The sums of order o completed from their heads.
+  auto sums = [&](int o, const SquareSums<Q>& hr, const Q& ht,
+                  const Q& hg) [[gnu::always_inline]] {
+    square_tail<T, Q>(o, hr, u, r, &si, &sc);
+    const Q t = tail_sum<Q>(o, ht, ta, tb);
+    const Q gh = tail_sum<Q>(o, hg, ga, gb);
+    t0 = at(t, 0);
+    t1 = at(t, 1);
+    t2 = at(t, 2);
+    g0 = at(gh, 0);
+    g1 = at(gh, 1);
+    g2 = at(gh, 2);
+    g3 = at(gh, 3);
+  };
   for (int m = 0;; ++m) {
     // The chain: |u|_m, e_I,m, u_y,m, then G = |u_C| e_I and H = e_Iy' u_C at order m.
     T rim, rcm, exim, eyim, uym, gx, gy, hx, hy, q;
@@ -333,6 +353,8 @@ template <class T, class Q>
       hy = zero + eyi0 * yc0;
       q = zero + uy0 * rc0;
     } else {
+      if constexpr (!kAhead<T>) sums(m, square_head<Q>(m, u, r), head_sum<Q>(m, ta, tb),
+                                     head_sum<Q>(m, ga, gb));
       rim = si * half_inv_ri + (exi0 * xi + eyi0 * yi);
       rcm = sc * half_inv_rc + (ecx * xc + ecy * yc);
       exim = (xi - t0) * inv_ri - rim * exi_r;
@@ -363,17 +385,8 @@ template <class T, class Q>
       gb[m] = quad<Q>(exim, eyim, xc, yc);
     }
     u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
-    square_tail<T, Q>(m + 1, head_r[m + 1], u, r, &si, &sc);
-    const Q t = tail_sum<Q>(m + 1, head_t[m + 1], ta, tb);
-    const Q gh = tail_sum<Q>(m + 1, head_g[m + 1], ga, gb);
-    t0 = at(t, 0);
-    t1 = at(t, 1);
-    t2 = at(t, 2);
-    g0 = at(gh, 0);
-    g1 = at(gh, 1);
-    g2 = at(gh, 2);
-    g3 = at(gh, 3);
-    if (m + 2 <= n) {
+    if constexpr (kAhead<T>) sums(m + 1, head_r[m + 1], head_t[m + 1], head_g[m + 1]);
+    if (kAhead<T> && m + 2 <= n) {
       head_r[m + 2] = square_head<Q>(m + 2, u, r);
       head_t[m + 2] = head_sum<Q>(m + 2, ta, tb);
       head_g[m + 2] = head_sum<Q>(m + 2, ga, gb);
@@ -414,6 +427,18 @@ template <class T, class Q>
 
   T xi = xi0, yi = yi0, xc = xc0, yc = yc0;  // u_m
   T si = zero, sc = zero, t0 = zero, t1 = zero, f0 = zero, f1 = zero, f2 = zero, f3 = zero;
+  auto sums = [&](int o, const SquareSums<Q>& hr, const Q& hq,
+                  const Q& hf) [[gnu::always_inline]] {
+    square_tail<T, Q>(o, hr, u, r, &si, &sc);
+    const Q t = tail_sum<Q>(o, hq, qa, qb);
+    const Q f = tail_sum<Q>(o, hf, pa, u);
+    t0 = at(t, 0);
+    t1 = at(t, 1);
+    f0 = at(f, 0);
+    f1 = at(f, 1);
+    f2 = at(f, 2);
+    f3 = at(f, 3);
+  };
   for (int m = 0;; ++m) {
     // The chain: |u|_m, u_y,m, w_m, rho_m = (|u_I| |u_C|)_m, then (|u_C| x_I, |u_C| y_I',
     // w x_C, w y_C) and u_y rho at order m.
@@ -430,6 +455,8 @@ template <class T, class Q>
       m3 = zero + w0 * yc0;
       qw = zero + uy0 * rho0;
     } else {
+      if constexpr (!kAhead<T>) sums(m, square_head<Q>(m, u, r), head_sum<Q>(m, qa, qb),
+                                     head_sum<Q>(m, pa, u));
       rim = si * half_inv_ri + (exi0 * xi + eyi0 * yi);
       rcm = sc * half_inv_rc + (ecx * xc + ecy * yc);
       uym = (yc - yi) * k.inv_1ps;
@@ -457,16 +484,8 @@ template <class T, class Q>
       qb[m] = quad<Q>(rcm, rhom, zero, zero);
     }
     u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
-    square_tail<T, Q>(m + 1, head_r[m + 1], u, r, &si, &sc);
-    const Q t = tail_sum<Q>(m + 1, head_q[m + 1], qa, qb);
-    const Q f = tail_sum<Q>(m + 1, head_f[m + 1], pa, u);
-    t0 = at(t, 0);
-    t1 = at(t, 1);
-    f0 = at(f, 0);
-    f1 = at(f, 1);
-    f2 = at(f, 2);
-    f3 = at(f, 3);
-    if (m + 2 <= n) {
+    if constexpr (kAhead<T>) sums(m + 1, head_r[m + 1], head_q[m + 1], head_f[m + 1]);
+    if (kAhead<T> && m + 2 <= n) {
       head_r[m + 2] = square_head<Q>(m + 2, u, r);
       head_q[m + 2] = head_sum<Q>(m + 2, qa, qb);
       head_f[m + 2] = head_sum<Q>(m + 2, pa, u);
