@@ -26,9 +26,16 @@ struct Settings {
 // or in sigma; impact_taylor_series.hpp) or the general one (impact_taylor.cpp).
 enum class Kernel { tau, sigma, general };
 
-// The series of a fast step of one impact (its state in s.c[.][0]), in SSE2 or, where
-// the CPU has it, AVX2 - bit for bit the same either way.
+// The builds of the one-impact fast kernels: SSE2 (every x86-64 CPU), AVX2, and AVX2
+// with AVX-512's 32 registers (AVX-512VL) - bit for bit the same.
+enum class KernelIsa { sse2, avx2, avx512 };
+
+// The series of a fast step of one impact (its state in s.c[.][0]) with the widest
+// build the CPU has.
 void fast_series(Kernel kernel, const Constants& constants, int order, Coefficients<double>& s);
+// The same with a given build; false (s untouched) where the CPU lacks it.
+bool fast_series_on(KernelIsa isa, Kernel kernel, const Constants& constants, int order,
+                    Coefficients<double>& s);
 
 // One impact, step by step. A step computes the state's Taylor series in the step's
 // variable, chooses its length from the series, and ends early on the first event

@@ -1,10 +1,10 @@
 // Independent impacts side by side in SIMD lanes (resolve_impacts with the exact method).
 //
-// Each lane holds one impact's integrator. In every round each lane plans its next
-// step; the lanes whose step is of the commonest kind (both contacts slipping, in
-// tau) get their series from one call of the vector kernel, the others take their
-// step alone with the general kernel, exactly as resolve_impact would. A lane whose
-// impact has ended takes the next one of the batch. The vector kernel is the scalar
+// Each impact in flight has its own integrator. Its fast steps (both contacts
+// slipping, in tau or in sigma) get their series from vector calls of the fast
+// kernels, one impact per lane, its other steps are taken alone with the general
+// kernel, exactly as resolve_impact would; an impact that has ended makes room for the
+// next one of the batch (run_lanes below). The vector kernel is the scalar
 // kernel's template (impact_taylor_series.hpp) on a GCC vector type, built for the
 // instruction set found at run time: SSE2 (2 lanes, every x86-64 CPU), AVX2 (4) or
 // AVX-512 (8). No fused multiply-adds anywhere (-ffp-contract=off), so a lane's
@@ -52,72 +52,79 @@ __attribute__((target("avx512f"))) void sigma_lanes_avx512(const Constants& k, i
   series_sigma<Pack8, QuadOf<Pack8>>(k, n, s);
 }
 
+// Twice as many impacts in flight as lanes: each is taken up to its next fast step
+// (general steps at once, an ended impact replaced by the batch's next), then the kind
+// with more impacts waiting fills a vector call, up to L of them; the others wait. With
+// 2L impacts in flight one kind always has L waiting until the batch runs dry, so the
+// vector calls are full (a lane holding a step of the other kind no longer idles).
 template <int L, class Pack, LaneKernel<Pack> Tau, LaneKernel<Pack> Sigma>
 void run_lanes(const Constants& constants, const Settings& settings, BatchImpacts& impacts) {
-  std::optional<Integrator> lane[L];
-  ScaledOutcome outcome[L];
-  size_t id[L] = {};
+  constexpr int kFlight = 2 * L;
+  std::optional<Integrator> flight[kFlight];
+  ScaledOutcome outcome[kFlight];
+  size_t id[kFlight] = {};
+  Kernel kind[kFlight];
+  bool waiting[kFlight] = {};
   auto load = [&](int i) {
     ScaledImpact impact;
     if (impacts.next(&impact, &id[i]))
-      lane[i].emplace(impact, constants, settings, nullptr, &outcome[i]);
+      flight[i].emplace(impact, constants, settings, nullptr, &outcome[i]);
     else
-      lane[i].reset();
+      flight[i].reset();
   };
-  for (int i = 0; i < L; ++i) load(i);
+  for (int i = 0; i < kFlight; ++i) load(i);
 
   const int n = settings.order;
   Coefficients<Pack> packed;
   Coefficients<double> single;
-  Kernel kinds[L];
   for (;;) {
-    bool any = false;
-    for (int i = 0; i < L; ++i) {
-      kinds[i] = Kernel::general;
-      while (lane[i] && lane[i]->done()) {
-        lane[i]->finish();
-        impacts.done(id[i], outcome[i]);
-        load(i);
+    int count[2] = {0, 0};  // waiting for tau, for sigma
+    for (int i = 0; i < kFlight; ++i) {
+      while (!waiting[i] && flight[i]) {
+        if (flight[i]->done()) {
+          flight[i]->finish();
+          impacts.done(id[i], outcome[i]);
+          load(i);
+          continue;
+        }
+        kind[i] = flight[i]->plan_step();
+        if (kind[i] == Kernel::general)
+          flight[i]->take_planned_step();
+        else
+          waiting[i] = true;
       }
-      if (!lane[i]) continue;
-      any = true;
-      kinds[i] = lane[i]->plan_step();
-      if (kinds[i] == Kernel::general) lane[i]->take_planned_step();
+      if (waiting[i]) ++count[kind[i] == Kernel::tau ? 0 : 1];
     }
-    if (!any) break;
-    // One vector call for the lanes of each fast kernel (idle lanes repeat a busy
-    // one's state: same work, nothing read back) - or, for fewer than a quarter of
-    // the lanes, the one-impact kernel each: cheaper than a mostly idle vector.
-    for (Kernel kind : {Kernel::tau, Kernel::sigma}) {
-      int first = -1, busy = 0;
-      for (int i = 0; i < L; ++i) busy += kinds[i] == kind;
-      if (busy == 0) continue;
-      if (4 * busy < L) {
-        for (int i = 0; i < L; ++i) {
-          if (kinds[i] != kind) continue;
-          const double* q = lane[i]->state();
-          for (int c = 0; c < kState; ++c) single.c[c][0] = q[c];
-          fast_series(kind, constants, n, single);
-          lane[i]->finish_fast_step(single);
-        }
-        continue;
+    if (count[0] + count[1] == 0) break;
+    const Kernel run = count[0] >= count[1] ? Kernel::tau : Kernel::sigma;
+    int lane_of[L], busy = 0;
+    for (int i = 0; i < kFlight && busy < L; ++i)
+      if (waiting[i] && kind[i] == run) lane_of[busy++] = i;
+    // Fewer than a quarter of the lanes: the one-impact kernel each, cheaper than a
+    // mostly idle vector.
+    if (4 * busy < L) {
+      for (int b = 0; b < busy; ++b) {
+        const int i = lane_of[b];
+        const double* q = flight[i]->state();
+        for (int c = 0; c < kState; ++c) single.c[c][0] = q[c];
+        fast_series(run, constants, n, single);
+        flight[i]->finish_fast_step(single);
+        waiting[i] = false;
       }
-      for (int i = 0; i < L; ++i)
-        if (kinds[i] == kind) {
-          if (first < 0) first = i;
-          const double* q = lane[i]->state();
-          for (int c = 0; c < kState; ++c) packed.c[c][0][i] = q[c];
-        }
-      for (int i = 0; i < L; ++i)
-        if (kinds[i] != kind)
-          for (int c = 0; c < kState; ++c) packed.c[c][0][i] = packed.c[c][0][first];
-      (kind == Kernel::tau ? Tau : Sigma)(constants, n, packed);
-      for (int i = 0; i < L; ++i) {
-        if (kinds[i] != kind) continue;
-        for (int c = 0; c < kState; ++c)
-          for (int j = 0; j <= n + 1; ++j) single.c[c][j] = packed.c[c][j][i];
-        lane[i]->finish_fast_step(single);
-      }
+      continue;
+    }
+    // Idle lanes repeat a busy one's state: same work, nothing read back.
+    for (int l = 0; l < L; ++l) {
+      const double* q = flight[lane_of[l < busy ? l : 0]]->state();
+      for (int c = 0; c < kState; ++c) packed.c[c][0][l] = q[c];
+    }
+    (run == Kernel::tau ? Tau : Sigma)(constants, n, packed);
+    for (int b = 0; b < busy; ++b) {
+      const int i = lane_of[b];
+      for (int c = 0; c < kState; ++c)
+        for (int j = 0; j <= n + 1; ++j) single.c[c][j] = packed.c[c][j][b];
+      flight[i]->finish_fast_step(single);
+      waiting[i] = false;
     }
   }
 }

@@ -179,46 +179,73 @@ template <class T>
   }
 }
 
-// |u_I|, |u_C| at order m >= 1 by the square-root recurrence
-//   |u|_m = (u_0 . u_m + (sum_{j=1}^{m-1} u_j . u_{m-j} - |u|_j |u|_{m-j}) / 2) / |u|_0,
-// the sum taken over half its range (it is symmetric). u[j] = (x_I, y_I', x_C, y_C),
-// r[j] = (|u_I|, |u_I|, |u_C|, |u_C|). Older terms first, the newest (j = 1) last.
-template <class T, class Q>
-[[gnu::always_inline]] inline void radii(int m, const Q* u, const Q* r,
-                                         const T& half_inv_ri, const T& half_inv_rc,
-                                         const T& exi0, const T& eyi0, const T& ecx,
-                                         const T& ecy, T* ri, T* rc) {
-  const Q zero{};
-  Q uu = zero, rr = zero;
-  for (int j = 2; 2 * j < m; ++j) {
-    uu = uu + u[j] * u[m - j];
-    rr = rr + r[j] * r[m - j];
-  }
-  if (m >= 3) {
-    uu = uu + u[1] * u[m - 1];
-    rr = rr + r[1] * r[m - 1];
-  }
-  uu = uu + uu;
-  rr = rr + rr;
-  if (m % 2 == 0) {
-    uu = uu + u[m / 2] * u[m / 2];
-    rr = rr + r[m / 2] * r[m / 2];
-  }
-  const T si = (at(uu, 0) + at(uu, 1)) - at(rr, 0);
-  const T sc = (at(uu, 2) + at(uu, 3)) - at(rr, 2);
-  *ri = si * half_inv_ri + (exi0 * at(u[m], 0) + eyi0 * at(u[m], 1));
-  *rc = sc * half_inv_rc + (ecx * at(u[m], 2) + ecy * at(u[m], 3));
-}
+// Each order m of a kernel waits for the last: u_m -> |u_I|_m, |u_C|_m -> e_I,m ->
+// the products -> u_{m+1} is its critical chain, and it is computed in T's alone (no
+// quads on it). The Cauchy sums of order m need only the terms of orders below m, so
+// they are formed beside the chain, ahead of time: the sum of order m + 1 is completed
+// (its newest terms, of index m, added) as soon as index m is known, and its older part,
+// the head (terms of index <= m - 1), one order before that. Each sum still adds the
+// same terms in the same order as a single loop would: the head from zero, oldest
+// index pair first, then the newest terms.
 
-// sum_{j=1}^{m-1} a[j] * b[m-j], the terms with index m - 1 (j = 1 and j = m - 1)
-// last: they are the newest.
+// For one impact (T = double) the sums are formed ahead as above; for a batch (T a
+// vector of impacts) the chain is already as wide as the vector, the kernel is bound by
+// its throughput, and each order forms its sums where it needs them (fewer values kept).
+template <class T>
+constexpr bool kAhead = std::is_same_v<T, double>;
+
+// The head of sum_{j=1}^{m-1} a[j] * b[m-j]: from zero, j = 2 .. m - 2 (indices <= m - 2).
 template <class Q>
-[[gnu::always_inline]] inline Q inner_sum(int m, const Q* a, const Q* b) {
+[[gnu::always_inline]] inline Q head_sum(int m, const Q* a, const Q* b) {
   Q acc{};
   for (int j = 2; j <= m - 2; ++j) acc = acc + a[j] * b[m - j];
+  return acc;
+}
+
+// The sum completed: the head, then the terms of index m - 1 (j = m - 1, then j = 1).
+template <class Q>
+[[gnu::always_inline]] inline Q tail_sum(int m, Q acc, const Q* a, const Q* b) {
   if (m >= 2) acc = acc + a[m - 1] * b[1];
   if (m >= 3) acc = acc + a[1] * b[m - 1];
   return acc;
+}
+
+// |u_I|, |u_C| at order m >= 1 by the square-root recurrence
+//   |u|_m = (u_0 . u_m + (sum_{j=1}^{m-1} u_j . u_{m-j} - |u|_j |u|_{m-j}) / 2) / |u|_0,
+// the sum taken over half its range (it is symmetric). u[j] = (x_I, y_I', x_C, y_C),
+// r[j] = (|u_I|, |u_I|, |u_C|, |u_C|). The sum's head (j >= 2, indices <= m - 2) first,
+// then j = 1, then the middle term; `si`, `sc` hold the sums for the two contacts, and
+// |u|_m = s / (2 |u|_0) + e_0 . u_m.
+template <class Q>
+struct SquareSums {
+  Q uu{}, rr{};
+};
+
+template <class Q>
+[[gnu::always_inline]] inline SquareSums<Q> square_head(int m, const Q* u, const Q* r) {
+  SquareSums<Q> h;
+  for (int j = 2; 2 * j < m; ++j) {
+    h.uu = h.uu + u[j] * u[m - j];
+    h.rr = h.rr + r[j] * r[m - j];
+  }
+  return h;
+}
+
+template <class T, class Q>
+[[gnu::always_inline]] inline void square_tail(int m, SquareSums<Q> h, const Q* u, const Q* r,
+                                               T* si, T* sc) {
+  if (m >= 3) {
+    h.uu = h.uu + u[1] * u[m - 1];
+    h.rr = h.rr + r[1] * r[m - 1];
+  }
+  h.uu = h.uu + h.uu;
+  h.rr = h.rr + h.rr;
+  if (m % 2 == 0) {
+    h.uu = h.uu + u[m / 2] * u[m / 2];
+    h.rr = h.rr + r[m / 2] * r[m / 2];
+  }
+  *si = (at(h.uu, 0) + at(h.uu, 1)) - at(h.rr, 0);
+  *sc = (at(h.uu, 2) + at(h.uu, 3)) - at(h.rr, 2);
 }
 
 // Writes a kernel's coefficients of order j: the slips, o_z, W and p.
@@ -275,57 +302,99 @@ template <class T, class Q>
   Q u[kTerms], r[kTerms];
   Q ta[kTerms], tb[kTerms];  // (|u_I|, |u_I|, u_y, -), (e_Ix, e_Iy, |u_C|, -)
   Q ga[kTerms], gb[kTerms];  // (|u_C|, |u_C|, e_Iy, e_Iy), (e_Ix, e_Iy, x_C, y_C)
-  T ri[kTerms], rc[kTerms], exi[kTerms], eyi[kTerms], uy[kTerms];
+  // The heads of the sums of the orders ahead (index: the order).
+  Q head_t[kTerms], head_g[kTerms];
+  SquareSums<Q> head_r[kTerms];
   const T zero{};
   const Geometry& g = k.g;
   const Start<T, Q> a = start<T, Q>(k, s);
   const T inv_ri = a.inv_ri, half_inv_ri = a.half_inv_ri, half_inv_rc = a.half_inv_rc;
-  const T ecx = a.ecx, ecy = a.ecy;
+  const T ri0 = a.ri, rc0 = a.rc, exi0 = a.exi, eyi0 = a.eyi, ecx = a.ecx, ecy = a.ecy;
+  const T uy0 = a.uy, xc0 = at(a.u0, 2), yc0 = at(a.u0, 3);
+  const T exi_r = exi0 * inv_ri, eyi_r = eyi0 * inv_ri;
   u[0] = a.u0;
-  ri[0] = a.ri;
-  rc[0] = a.rc;
-  exi[0] = a.exi;
-  eyi[0] = a.eyi;
-  const T exi_r = exi[0] * inv_ri, eyi_r = eyi[0] * inv_ri;
-  uy[0] = a.uy;
-  r[0] = quad<Q>(ri[0], ri[0], rc[0], rc[0]);
-  ta[0] = quad<Q>(ri[0], ri[0], uy[0], zero);
-  tb[0] = quad<Q>(exi[0], eyi[0], rc[0], zero);
-  ga[0] = quad<Q>(rc[0], rc[0], eyi[0], eyi[0]);
-  gb[0] = quad<Q>(exi[0], eyi[0], at(u[0], 2), at(u[0], 3));
+  r[0] = quad<Q>(ri0, ri0, rc0, rc0);
+  ta[0] = quad<Q>(ri0, ri0, uy0, zero);
+  tb[0] = quad<Q>(exi0, eyi0, rc0, zero);
+  ga[0] = quad<Q>(rc0, rc0, eyi0, eyi0);
+  gb[0] = quad<Q>(exi0, eyi0, xc0, yc0);
+  head_t[1] = head_g[1] = Q{};
+  head_r[1] = SquareSums<Q>{};
 
-  for (int m = 0; m <= n; ++m) {
-    Q gh;
-    T q;
+  T xi = at(a.u0, 0), yi = at(a.u0, 1), xc = xc0, yc = yc0;  // u_m
+  T si = zero, sc = zero;                                      // the sums of order m
+  T t0 = zero, t1 = zero, t2 = zero, g0 = zero, g1 = zero, g2 = zero, g3 = zero;
+  // The sums of order o completed from their heads.
+  auto sums = [&](int o, const SquareSums<Q>& hr, const Q& ht,
+                  const Q& hg) [[gnu::always_inline]] {
+    square_tail<T, Q>(o, hr, u, r, &si, &sc);
+    const Q t = tail_sum<Q>(o, ht, ta, tb);
+    const Q gh = tail_sum<Q>(o, hg, ga, gb);
+    t0 = at(t, 0);
+    t1 = at(t, 1);
+    t2 = at(t, 2);
+    g0 = at(gh, 0);
+    g1 = at(gh, 1);
+    g2 = at(gh, 2);
+    g3 = at(gh, 3);
+  };
+  for (int m = 0;; ++m) {
+    // The chain: |u|_m, e_I,m, u_y,m, then G = |u_C| e_I and H = e_Iy' u_C at order m.
+    T rim, rcm, exim, eyim, uym, gx, gy, hx, hy, q;
     if (m == 0) {
-      gh = Q{} + ga[0] * gb[0];
-      q = zero + uy[0] * rc[0];
+      rim = ri0;
+      rcm = rc0;
+      exim = exi0;
+      eyim = eyi0;
+      uym = uy0;
+      gx = zero + rc0 * exi0;
+      gy = zero + rc0 * eyi0;
+      hx = zero + eyi0 * xc0;
+      hy = zero + eyi0 * yc0;
+      q = zero + uy0 * rc0;
     } else {
-      radii<T, Q>(m, u, r, half_inv_ri, half_inv_rc, exi[0], eyi[0], ecx, ecy, &ri[m], &rc[m]);
-      r[m] = quad<Q>(ri[m], ri[m], rc[m], rc[m]);
-      const Q t = inner_sum<Q>(m, ta, tb);
-      exi[m] = (at(u[m], 0) - at(t, 0)) * inv_ri - ri[m] * exi_r;
-      eyi[m] = (at(u[m], 1) - at(t, 1)) * inv_ri - ri[m] * eyi_r;
-      uy[m] = (at(u[m], 3) - at(u[m], 1)) * k.inv_1ps;
-      ta[m] = quad<Q>(ri[m], ri[m], uy[m], zero);
-      tb[m] = quad<Q>(exi[m], eyi[m], rc[m], zero);
-      ga[m] = quad<Q>(rc[m], rc[m], eyi[m], eyi[m]);
-      gb[m] = quad<Q>(exi[m], eyi[m], at(u[m], 2), at(u[m], 3));
-      gh = inner_sum<Q>(m, ga, gb);
-      gh = gh + ga[m] * gb[0];
-      gh = gh + ga[0] * gb[m];
-      q = (at(t, 2) + uy[0] * rc[m]) + uy[m] * rc[0];
+      if constexpr (!kAhead<T>) sums(m, square_head<Q>(m, u, r), head_sum<Q>(m, ta, tb),
+                                     head_sum<Q>(m, ga, gb));
+      rim = si * half_inv_ri + (exi0 * xi + eyi0 * yi);
+      rcm = sc * half_inv_rc + (ecx * xc + ecy * yc);
+      exim = (xi - t0) * inv_ri - rim * exi_r;
+      eyim = (yi - t1) * inv_ri - rim * eyi_r;
+      uym = (yc - yi) * k.inv_1ps;
+      gx = (g0 + rcm * exi0) + rc0 * exim;
+      gy = (g1 + rcm * eyi0) + rc0 * eyim;
+      hx = (g2 + eyim * xc0) + eyi0 * xc;
+      hy = (g3 + eyim * yc0) + eyi0 * yc;
+      q = (t2 + uy0 * rcm) + uym * rc0;
     }
-    const T gx = at(gh, 0), gy = at(gh, 1), hx = at(gh, 2), hy = at(gh, 3);
-    const T xc = at(u[m], 2), yc = at(u[m], 3);
     const double inv = kInverse[m];
     const T xi1 = ((k.xi_hx * hx + k.xi_xc * xc) + k.xi_gx * gx) * inv;
-    const T yi1 = (((k.yi_hy * hy + k.yi_yc * yc) + k.yi_rc * rc[m]) + k.yi_gy * gy) * inv;
+    const T yi1 = (((k.yi_hy * hy + k.yi_yc * yc) + k.yi_rc * rcm) + k.yi_gy * gy) * inv;
     const T xc1 = ((k.xc_hx * hx + k.xc_xc * xc) + k.xc_gx * gx) * inv;
-    const T yc1 = (((k.yc_hy * hy + k.yc_yc * yc) + k.yc_rc * rc[m]) + k.yc_gy * gy) * inv;
-    u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
+    const T yc1 = (((k.yc_hy * hy + k.yc_yc * yc) + k.yc_rc * rcm) + k.yc_gy * gy) * inv;
     store(s, m + 1, xi1, yi1, xc1, yc1, T((k.oz_gx * gx) * inv), T((g.c * q) * inv),
-          T(rc[m] * inv));
+          T(rcm * inv));
+    if (m == n) break;
+
+    // Beside the chain: index m into the sums, the sums of order m + 1 completed and
+    // the heads of order m + 2.
+    if (m > 0) {
+      r[m] = quad<Q>(rim, rim, rcm, rcm);
+      ta[m] = quad<Q>(rim, rim, uym, zero);
+      tb[m] = quad<Q>(exim, eyim, rcm, zero);
+      ga[m] = quad<Q>(rcm, rcm, eyim, eyim);
+      gb[m] = quad<Q>(exim, eyim, xc, yc);
+    }
+    u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
+    if constexpr (kAhead<T>) sums(m + 1, head_r[m + 1], head_t[m + 1], head_g[m + 1]);
+    if (kAhead<T> && m + 2 <= n) {
+      head_r[m + 2] = square_head<Q>(m + 2, u, r);
+      head_t[m + 2] = head_sum<Q>(m + 2, ta, tb);
+      head_g[m + 2] = head_sum<Q>(m + 2, ga, gb);
+    }
+    xi = xi1;
+    yi = yi1;
+    xc = xc1;
+    yc = yc1;
   }
 }
 
@@ -337,53 +406,94 @@ template <class T, class Q>
   Q u[kTerms], r[kTerms];
   Q pa[kTerms];              // (|u_C|, |u_C|, w, w), w = s |u_I| + c mu_w y_I'
   Q qa[kTerms], qb[kTerms];  // (|u_I|, u_y, -, -), (|u_C|, rho, -, -)
-  T ri[kTerms], rc[kTerms], uy[kTerms], rho[kTerms];
+  Q head_q[kTerms], head_f[kTerms];
+  SquareSums<Q> head_r[kTerms];
   const T zero{};
   const Geometry& g = k.g;
   const Start<T, Q> a = start<T, Q>(k, s);
   const T half_inv_ri = a.half_inv_ri, half_inv_rc = a.half_inv_rc;
-  const T exi0 = a.exi, eyi0 = a.eyi, ecx = a.ecx, ecy = a.ecy;
+  const T ri0 = a.ri, rc0 = a.rc, exi0 = a.exi, eyi0 = a.eyi, ecx = a.ecx, ecy = a.ecy;
+  const T uy0 = a.uy, xi0 = at(a.u0, 0), yi0 = at(a.u0, 1), xc0 = at(a.u0, 2),
+          yc0 = at(a.u0, 3);
+  const T rho0 = zero + ri0 * rc0;
+  const T w0 = g.s * ri0 + k.cmw * yi0;
   u[0] = a.u0;
-  ri[0] = a.ri;
-  rc[0] = a.rc;
-  uy[0] = a.uy;
-  rho[0] = zero + ri[0] * rc[0];
-  r[0] = quad<Q>(ri[0], ri[0], rc[0], rc[0]);
-  const T w0 = g.s * ri[0] + k.cmw * at(u[0], 1);
-  pa[0] = quad<Q>(rc[0], rc[0], w0, w0);
-  qa[0] = quad<Q>(ri[0], uy[0], zero, zero);
-  qb[0] = quad<Q>(rc[0], rho[0], zero, zero);
+  r[0] = quad<Q>(ri0, ri0, rc0, rc0);
+  pa[0] = quad<Q>(rc0, rc0, w0, w0);
+  qa[0] = quad<Q>(ri0, uy0, zero, zero);
+  qb[0] = quad<Q>(rc0, rho0, zero, zero);
+  head_q[1] = head_f[1] = Q{};
+  head_r[1] = SquareSums<Q>{};
 
-  for (int m = 0; m <= n; ++m) {
-    Q f;  // (|u_C| x_I, |u_C| y_I', w x_C, w y_C) at order m
-    T qw;       // u_y rho at order m
+  T xi = xi0, yi = yi0, xc = xc0, yc = yc0;  // u_m
+  T si = zero, sc = zero, t0 = zero, t1 = zero, f0 = zero, f1 = zero, f2 = zero, f3 = zero;
+  auto sums = [&](int o, const SquareSums<Q>& hr, const Q& hq,
+                  const Q& hf) [[gnu::always_inline]] {
+    square_tail<T, Q>(o, hr, u, r, &si, &sc);
+    const Q t = tail_sum<Q>(o, hq, qa, qb);
+    const Q f = tail_sum<Q>(o, hf, pa, u);
+    t0 = at(t, 0);
+    t1 = at(t, 1);
+    f0 = at(f, 0);
+    f1 = at(f, 1);
+    f2 = at(f, 2);
+    f3 = at(f, 3);
+  };
+  for (int m = 0;; ++m) {
+    // The chain: |u|_m, u_y,m, w_m, rho_m = (|u_I| |u_C|)_m, then (|u_C| x_I, |u_C| y_I',
+    // w x_C, w y_C) and u_y rho at order m.
+    T rim, rcm, uym, wm, rhom, m0, m1, m2, m3, qw;
     if (m == 0) {
-      f = Q{} + pa[0] * u[0];
-      qw = zero + uy[0] * rho[0];
+      rim = ri0;
+      rcm = rc0;
+      uym = uy0;
+      wm = w0;
+      rhom = rho0;
+      m0 = zero + rc0 * xi0;
+      m1 = zero + rc0 * yi0;
+      m2 = zero + w0 * xc0;
+      m3 = zero + w0 * yc0;
+      qw = zero + uy0 * rho0;
     } else {
-      radii<T, Q>(m, u, r, half_inv_ri, half_inv_rc, exi0, eyi0, ecx, ecy, &ri[m], &rc[m]);
-      r[m] = quad<Q>(ri[m], ri[m], rc[m], rc[m]);
-      uy[m] = (at(u[m], 3) - at(u[m], 1)) * k.inv_1ps;
-      const T wm = g.s * ri[m] + k.cmw * at(u[m], 1);
-      pa[m] = quad<Q>(rc[m], rc[m], wm, wm);
-      const Q t = inner_sum<Q>(m, qa, qb);
-      rho[m] = (at(t, 0) + ri[m] * rc[0]) + ri[0] * rc[m];
-      qw = (at(t, 1) + uy[m] * rho[0]) + uy[0] * rho[m];
-      qa[m] = quad<Q>(ri[m], uy[m], zero, zero);
-      qb[m] = quad<Q>(rc[m], rho[m], zero, zero);
-      f = inner_sum<Q>(m, pa, u);
-      f = f + pa[m] * u[0];
-      f = f + pa[0] * u[m];
+      if constexpr (!kAhead<T>) sums(m, square_head<Q>(m, u, r), head_sum<Q>(m, qa, qb),
+                                     head_sum<Q>(m, pa, u));
+      rim = si * half_inv_ri + (exi0 * xi + eyi0 * yi);
+      rcm = sc * half_inv_rc + (ecx * xc + ecy * yc);
+      uym = (yc - yi) * k.inv_1ps;
+      wm = g.s * rim + k.cmw * yi;
+      rhom = (t0 + rim * rc0) + ri0 * rcm;
+      qw = (t1 + uym * rho0) + uy0 * rhom;
+      m0 = (f0 + rcm * xi0) + rc0 * xi;
+      m1 = (f1 + rcm * yi0) + rc0 * yi;
+      m2 = (f2 + wm * xc0) + w0 * xc;
+      m3 = (f3 + wm * yc0) + w0 * yc;
     }
-    const T m0 = at(f, 0), m1 = at(f, 1), m2 = at(f, 2), m3 = at(f, 3);
     const double inv = kInverse[m];
     const T xi1 = (k.s_xi_m2 * m2 + k.s_xi_m0 * m0) * inv;
-    const T yi1 = ((k.s_yi_rho * rho[m] + k.s_yi_m3 * m3) + k.s_yi_m1 * m1) * inv;
+    const T yi1 = ((k.s_yi_rho * rhom + k.s_yi_m3 * m3) + k.s_yi_m1 * m1) * inv;
     const T xc1 = (k.s_xc_m2 * m2 + k.s_xc_m0 * m0) * inv;
-    const T yc1 = ((k.s_yc_rho * rho[m] + k.s_yc_m3 * m3) + k.s_yc_m1 * m1) * inv;
-    u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
+    const T yc1 = ((k.s_yc_rho * rhom + k.s_yc_m3 * m3) + k.s_yc_m1 * m1) * inv;
     store(s, m + 1, xi1, yi1, xc1, yc1, T((k.s_oz_m0 * m0) * inv), T((g.c * qw) * inv),
-          T(rho[m] * inv));
+          T(rhom * inv));
+    if (m == n) break;
+
+    if (m > 0) {
+      r[m] = quad<Q>(rim, rim, rcm, rcm);
+      pa[m] = quad<Q>(rcm, rcm, wm, wm);
+      qa[m] = quad<Q>(rim, uym, zero, zero);
+      qb[m] = quad<Q>(rcm, rhom, zero, zero);
+    }
+    u[m + 1] = quad<Q>(xi1, yi1, xc1, yc1);
+    if constexpr (kAhead<T>) sums(m + 1, head_r[m + 1], head_q[m + 1], head_f[m + 1]);
+    if (kAhead<T> && m + 2 <= n) {
+      head_r[m + 2] = square_head<Q>(m + 2, u, r);
+      head_q[m + 2] = head_sum<Q>(m + 2, qa, qb);
+      head_f[m + 2] = head_sum<Q>(m + 2, pa, u);
+    }
+    xi = xi1;
+    yi = yi1;
+    xc = xc1;
+    yc = yc1;
   }
 }
 
