@@ -235,16 +235,16 @@ Validation ImpactOptions::validate() const {
   return {};
 }
 
-namespace {
-
 // What every impact of a call shares: the parameters and the options, checked once.
-Validation check_inputs(const CushionParams& params, const ImpactOptions& options) {
+Validation detail::check_impact_inputs(const CushionParams& params, const ImpactOptions& options) {
   if (Validation e = params.validate()) return e;
   if (Validation e = options.validate()) return e;
   if (options.method == ImpactMethod::table && options.table == nullptr)
     return invalid({"table"}, "must be a built impact table for method table");
   return {};
 }
+
+namespace {
 
 // An impact made ready to solve.
 struct Prepared {
@@ -267,7 +267,7 @@ double speed_scale(const BallState& incoming) {
 
 // Stage 1 of resolve_impact: the incoming state's checks, the table's answer where it
 // has one, the method and tolerance to use, and the impact in scaled units. `params`
-// and `options` have been validated (check_inputs).
+// and `options` have been validated (check_impact_inputs).
 // Returns the answer when there is one already (invalid input, or the table's);
 // otherwise fills *prep.
 std::optional<ImpactResult> prepare(const CushionParams& params, const BallState& incoming,
@@ -323,11 +323,18 @@ ImpactResult complete(const CushionParams& params, const BallState& incoming,
 
 }  // namespace
 
-// The stages of an impact, in order: prepare (checks, the table, scaling), solve (the
-// method), complete (units and flags).
 ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
                             const ImpactOptions& options) {
-  if (Validation e = check_inputs(params, options)) return invalid_result(std::move(*e));
+  if (Validation e = detail::check_impact_inputs(params, options))
+    return invalid_result(std::move(*e));
+  return detail::resolve_checked_impact(params, incoming, options);
+}
+
+// The stages of an impact, in order: prepare (the state's checks, the table, scaling),
+// solve (the method), complete (units and flags).
+ImpactResult detail::resolve_checked_impact(const CushionParams& params,
+                                            const BallState& incoming,
+                                            const ImpactOptions& options) {
   Prepared prep;
   if (std::optional<ImpactResult> answer = prepare(params, incoming, options, &prep))
     return std::move(*answer);
@@ -393,7 +400,7 @@ void resolve_impacts(const CushionParams& params, std::span<const BallState> in,
                               static_cast<double>(out.size())));
   if (options.trace != nullptr)
     return refuse_all(invalid({"trace"}, "must be null: a batch records no slip histories"));
-  if (Validation e = check_inputs(params, options)) return refuse_all(*e);
+  if (Validation e = detail::check_impact_inputs(params, options)) return refuse_all(*e);
 
   // One tolerance for every impact the exact method solves: the options' own, or the
   // table's fallback one.

@@ -64,6 +64,14 @@ class BatchImpacts {
 void solve_taylor_batch(const Geometry& geometry, double tolerance, int max_steps, int lanes,
                         BatchImpacts& impacts);
 
+// What every impact of a resolve_impact call shares, the parameters and the options,
+// checked: the error it gives every impact with them, or none.
+Validation check_impact_inputs(const CushionParams& params, const ImpactOptions& options);
+// resolve_impact with parameters and options that check_impact_inputs passed, for a
+// caller whose impacts all share them (a shot's): the same result, checked once.
+ImpactResult resolve_checked_impact(const CushionParams& params, const BallState& incoming,
+                                    const ImpactOptions& options);
+
 // Fills a trace sample (scaled) from a state and the work so far.
 TraceSample scaled_sample(const Geometry& g, const Scaled& q, double impulse, double work);
 

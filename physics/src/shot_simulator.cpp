@@ -9,6 +9,7 @@
 
 #include "ball_motion.hpp"
 #include "cueplan/physics/shot.hpp"
+#include "impact_methods.hpp"
 
 namespace cueplan::physics {
 namespace {
@@ -161,6 +162,9 @@ class ShotRun {
     }
     collision_.tolerance = tolerance;
     result_->impact_method = impact_.method;
+    // Every cushion contact of the shot shares the parameters and these options: they
+    // are checked here, once, not on every impact.
+    impact_error_ = detail::check_impact_inputs(scene_.ball_and_cushion, impact_);
   }
 
   // Cue strike: speed along the aim, topspin about the horizontal axis perpendicular
@@ -510,10 +514,11 @@ class ShotRun {
     BallState in;
     in.velocity = {dot(b.v, x_axis), dot(b.v, n), 0.0};
     in.spin = {b.w.x * x_axis.x + b.w.y * x_axis.y, b.w.x * n.x + b.w.y * n.y, b.w.z};
-    const bool pressed_in = dot(detail::piece_from(cloth_, b).accel, n) > 0.0;
+    // (Whether friction presses the ball in is asked only of an approach within rounding
+    // of none.)
     if (!(in.velocity.y > 0.0) ||
-        (pressed_in &&
-         in.velocity.y <= kRoundingApproach * std::hypot(in.velocity.x, in.velocity.y))) {
+        (in.velocity.y <= kRoundingApproach * std::hypot(in.velocity.x, in.velocity.y) &&
+         dot(detail::piece_from(cloth_, b).accel, n) > 0.0)) {
       // Friction on the cloth presses the ball into the cushion with no approach speed
       // left (a run of ever smaller bounces, each e times the last: the exact method
       // follows them down to far below the rounding of the speed, so the run is cut at
@@ -524,7 +529,12 @@ class ShotRun {
                            whose(k), which));
       return;
     }
-    const ImpactResult out = resolve_impact(scene_.ball_and_cushion, in, impact_);
+    if (impact_error_) {
+      end_shot(ShotStatus::impact_failed,
+               fmt::format("{}cushion {}: {}", whose(k), which, impact_error_->message()));
+      return;
+    }
+    const ImpactResult out = detail::resolve_checked_impact(scene_.ball_and_cushion, in, impact_);
     if (!usable(out.status)) {
       end_shot(ShotStatus::impact_failed,
                fmt::format("{}cushion {}: {}", whose(k), which, out.message));
@@ -741,6 +751,7 @@ class ShotRun {
   const std::array<CushionLine, 4> lines_;
   const BallBallParams& ball_ball_;
   ImpactOptions impact_;
+  Validation impact_error_;  // what is wrong with the parameters or impact_, if anything
   CollisionOptions collision_;
   ShotResult* result_;
   std::vector<BallRun> runs_;
