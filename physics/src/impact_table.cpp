@@ -204,10 +204,21 @@ struct PointError {
   }
 };
 
-PointError point_error(const Outcome& q, const Outcome& x) {
+// The exact outcome at a test point, with its rebound speed and angle, which every
+// stencil tried at the point is compared with.
+struct Truth {
+  Outcome o;
+  double speed = 0.0, angle = 0.0;
+  Truth() = default;
+  explicit Truth(const Outcome& x)
+      : o(x), speed(std::sqrt(x.ux * x.ux + x.uy * x.uy)), angle(rebound_angle(x)) {}
+};
+
+PointError point_error(const Outcome& q, const Truth& truth) {
+  const Outcome& x = truth.o;
   PointError e;
-  e.speed = std::abs(std::sqrt(q.ux * q.ux + q.uy * q.uy) - std::sqrt(x.ux * x.ux + x.uy * x.uy));
-  e.angle_deg = std::abs(rebound_angle(q) - rebound_angle(x)) / kDegree;
+  e.speed = std::abs(std::sqrt(q.ux * q.ux + q.uy * q.uy) - truth.speed);
+  e.angle_deg = std::abs(rebound_angle(q) - truth.angle) / kDegree;
   for (double d : {q.ux - x.ux, q.uy - x.uy, q.ox - x.ox, q.oy - x.oy, q.oz - x.oz})
     e.state = std::max(e.state, std::abs(d));
   for (double d : {q.pc - x.pc, q.pt - x.pt, q.wc - x.wc, q.wt - x.wt})
@@ -317,6 +328,12 @@ class ImpactTableAccess {
   static void roll_nodes(Build& b);
   static void roll_stencils(Build& b);
   static void measured_error(Build& b);
+  // ImpactTable::interpolate and interpolate_roll at a test point, to the same bits,
+  // for a table whose nodes are all finite (see add_terms).
+  static void interpolate_test_point(const ImpactTable& t, const int cell[3],
+                                     const double local[3], int stencil, double* out);
+  static void interpolate_roll_test_point(const ImpactTable& t, const int cell[2],
+                                          const double local[2], int stencil, double* out);
   static bool save(const ImpactTable& t, const std::string& path);
   static std::optional<ImpactTable> load(const std::string& path);
   static bool same_shape(const ImpactTableOptions& a, const ImpactTableOptions& b) {
@@ -429,7 +446,73 @@ inline void add_row(const double* row, double scale, const double w[4], double a
         a0 * row[q] + a1 * row[kStored + q] + a2 * row[2 * kStored + q] + a3 * row[3 * kStored + q];
 }
 
+// add_row where only the weights w[k] != 0 count, when the row's values are finite:
+// a zero weight makes its term a zero, and adding a zero leaves a sum unchanged (acc
+// is never -0: it starts at +0 and a sum of round-to-nearest is -0 only when both
+// addends are). `only` names the one nonzero weight, or is -1 to take all four.
+inline void add_terms(const double* row, double scale, const double w[4], int only,
+                      double acc[kStored]) {
+  if (only < 0) return add_row(row, scale, w, acc);
+  const double a = scale * w[only];
+  const double* r = row + only * kStored;
+  for (int q = 0; q < kStored; ++q) acc[q] += a * r[q];
+}
+
+// The one nonzero weight among four, or -1: a test point on a node plane (local 0 or
+// 1) has weights 1 and three zeros along that axis.
+inline int one_hot(const double w[4]) {
+  int only = -1;
+  for (int k = 0; k < 4; ++k) {
+    if (w[k] == 0.0) continue;
+    if (only >= 0) return -1;
+    only = k;
+  }
+  return only;
+}
+
 }  // namespace
+
+void ImpactTableAccess::interpolate_test_point(const ImpactTable& t, const int cell[3],
+                                               const double local[3], int stencil,
+                                               double* out) {
+  int start[3];
+  double w[3][4];
+  for (int a = 0; a < 3; ++a) {
+    start[a] = t.axes_[a].stencil_start(cell[a], stencil_shift(stencil, a));
+    lagrange_weights(cell[a] - start[a] + local[a], w[a]);
+  }
+  const int only = one_hot(w[2]);
+  const size_t nt = static_cast<size_t>(t.axes_[1].nodes), ns = static_cast<size_t>(t.axes_[2].nodes);
+  double acc[kStored] = {};
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const double scale = w[0][i] * w[1][j];
+      if (scale == 0.0) continue;
+      add_terms(&t.nodes_[(((start[0] + i) * nt + start[1] + j) * ns + start[2]) * kStored], scale,
+                w[2], only, acc);
+    }
+  }
+  std::copy(acc, acc + kStored, out);
+}
+
+void ImpactTableAccess::interpolate_roll_test_point(const ImpactTable& t, const int cell[2],
+                                                    const double local[2], int stencil,
+                                                    double* out) {
+  int start[2];
+  double w[2][4];
+  for (int a = 0; a < 2; ++a) {
+    start[a] = t.roll_axes_[a].stencil_start(cell[a], stencil_shift(stencil, 2 * a));
+    lagrange_weights(cell[a] - start[a] + local[a], w[a]);
+  }
+  const int only = one_hot(w[1]);
+  const size_t ns = static_cast<size_t>(t.roll_axes_[1].nodes);
+  double acc[kStored] = {};
+  for (int i = 0; i < 4; ++i)
+    if (w[0][i] != 0.0)
+      add_terms(&t.roll_nodes_[((start[0] + i) * ns + start[1]) * kStored], w[0][i], w[1], only,
+                acc);
+  std::copy(acc, acc + kStored, out);
+}
 
 void ImpactTable::interpolate(const int cell[3], const double local[3], int stencil,
                               double* out) const {
@@ -530,6 +613,56 @@ uint8_t choose_stencil(bool roll_plane, double tolerance, ErrorOf&& error_of, Po
   }
   *error = best_error;
   return best_excess <= 1.0 ? static_cast<uint8_t>(best) : kFallback;
+}
+
+// The order in which a cell's test points are tried. A stencil's measurement stops at
+// the first point that takes its excess over the cutoff, and the stencil chosen does
+// not depend on the order: a stencil measured in full has the maximum over its points
+// whatever the order, and one stopped early is over the cutoff in any order. The
+// point that stopped the last stencil goes first (the centred stencil's worst point
+// to begin with), as the next stencil most likely fails there too.
+template <int N>
+class PointOrder {
+ public:
+  PointOrder() {
+    for (int k = 0; k < N; ++k) order_[k] = k;
+  }
+  int operator[](int k) const { return order_[k]; }
+  void to_front(int k) {
+    const int p = order_[k];
+    for (int i = k; i > 0; --i) order_[i] = order_[i - 1];
+    order_[0] = p;
+  }
+
+ private:
+  int order_[N];
+};
+
+// Measures a stencil at the test points in `order`: error_at(p) is its error at point
+// p. Stops once the excess is over `cutoff`, moving the point that took it there to
+// the front of the order.
+template <int N, class ErrorAt>
+PointError measure(PointOrder<N>& order, double tolerance, double cutoff, ErrorAt&& error_at) {
+  PointError e;
+  int worst = 0;
+  double worst_excess = -1.0;
+  for (int k = 0; k < N; ++k) {
+    if (excess(e, tolerance) > cutoff) {
+      order.to_front(k - 1);
+      return e;
+    }
+    const PointError at = error_at(order[k]);
+    if (cutoff == INFINITY) {
+      const double x = excess(at, tolerance);
+      if (!(x <= worst_excess)) {
+        worst = k;
+        worst_excess = std::isnan(x) ? INFINITY : x;
+      }
+    }
+    e.include(at);
+  }
+  if (cutoff == INFINITY) order.to_front(worst);
+  return e;
 }
 
 // What one build thread found.
@@ -640,9 +773,14 @@ void ImpactTableAccess::volume_stencils(Build& b) {
   const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
   const double tolerance = b.tolerance, coupling = b.coupling, work_ratio = b.work_ratio;
   t.cell_stencil_.assign((na - 1) * plane_cells, kFallback);
+  const bool finite = std::all_of(t.nodes_.begin(), t.nodes_.end(),
+                                  [](double x) { return std::isfinite(x); });
   parallel_for(b.threads, na - 1, [&](int ia, int id) {
     Tally& tally = b.tallies[id];
     const double alpha = Build::mid(axes[0], ia);
+    double cos_alpha[kTestPoints];
+    for (int p = 0; p < kTestPoints; ++p)
+      cos_alpha[p] = std::cos(Build::at(axes[0], ia, kTestLocal[p][0]) * kDegree);
     // Exact values at the centres (it, is), k_T faces (node it, mid is) and k_S
     // faces (mid it, node is) of this slab.
     std::vector<Point> centre_points, topspin_points, sidespin_points;
@@ -673,23 +811,24 @@ void ImpactTableAccess::volume_stencils(Build& b) {
             &topspin_faces[((it + 1) * (ns - 1) + is) * kStored],
             &sidespin_faces[(it * ns + is) * kStored],
             &sidespin_faces[(it * ns + is + 1) * kStored]};
-        Outcome truth[kTestPoints];
-        double cos_alpha[kTestPoints], kt[kTestPoints], ks[kTestPoints];
+        Truth truth[kTestPoints];
+        double kt[kTestPoints], ks[kTestPoints];
         for (int p = 0; p < kTestPoints; ++p) {
-          cos_alpha[p] = std::cos(Build::at(axes[0], ia, kTestLocal[p][0]) * kDegree);
           kt[p] = Build::at(axes[1], it, kTestLocal[p][1]);
           ks[p] = Build::at(axes[2], is, kTestLocal[p][2]);
-          truth[p] = expand(exact_at[p], cos_alpha[p], kt[p], ks[p], coupling, work_ratio);
+          truth[p] = Truth(expand(exact_at[p], cos_alpha[p], kt[p], ks[p], coupling, work_ratio));
         }
+        PointOrder<kTestPoints> order;
         auto error_of = [&](int stencil, double cutoff) {
-          PointError e;
-          double q[kStored];
-          for (int p = 0; p < kTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
-            t.interpolate(cell, kTestLocal[p], stencil, q);
-            e.include(
-                point_error(expand(q, cos_alpha[p], kt[p], ks[p], coupling, work_ratio), truth[p]));
-          }
-          return e;
+          return measure(order, tolerance, cutoff, [&](int p) {
+            double q[kStored];
+            if (finite)
+              interpolate_test_point(t, cell, kTestLocal[p], stencil, q);
+            else
+              t.interpolate(cell, kTestLocal[p], stencil, q);
+            return point_error(expand(q, cos_alpha[p], kt[p], ks[p], coupling, work_ratio),
+                               truth[p]);
+          });
         };
         PointError e;
         const uint8_t code = choose_stencil(false, tolerance, error_of, &e);
@@ -727,9 +866,14 @@ void ImpactTableAccess::roll_stencils(Build& b) {
   const int ra = roll[0].nodes, rs = roll[1].nodes;
   const double tolerance = b.tolerance, coupling = b.coupling, work_ratio = b.work_ratio;
   t.roll_stencil_.assign(static_cast<size_t>(ra - 1) * (rs - 1), kFallback);
+  const bool finite = std::all_of(t.roll_nodes_.begin(), t.roll_nodes_.end(),
+                                  [](double x) { return std::isfinite(x); });
   parallel_for(b.threads, ra - 1, [&](int ia, int id) {
     Tally& tally = b.tallies[id];
     const double alpha = Build::mid(roll[0], ia);
+    double cos_alpha[kRollTestPoints];
+    for (int p = 0; p < kRollTestPoints; ++p)
+      cos_alpha[p] = std::cos(Build::at(roll[0], ia, kRollTestLocal[p][0]) * kDegree);
     std::vector<Point> centre_points, edge_points;
     for (int is = 0; is < rs; ++is) {
       if (is < rs - 1) centre_points.push_back({alpha, 1.0, Build::mid(roll[1], is)});
@@ -745,22 +889,22 @@ void ImpactTableAccess::roll_stencils(Build& b) {
           &centres[is * kStored], &b.alpha_edges[(ia * (rs - 1) + is) * kStored],
           &b.alpha_edges[((ia + 1) * (rs - 1) + is) * kStored], &sidespin_edges[is * kStored],
           &sidespin_edges[(is + 1) * kStored]};
-      Outcome truth[kRollTestPoints];
-      double cos_alpha[kRollTestPoints], ks[kRollTestPoints];
+      Truth truth[kRollTestPoints];
+      double ks[kRollTestPoints];
       for (int p = 0; p < kRollTestPoints; ++p) {
-        cos_alpha[p] = std::cos(Build::at(roll[0], ia, kRollTestLocal[p][0]) * kDegree);
         ks[p] = Build::at(roll[1], is, kRollTestLocal[p][1]);
-        truth[p] = expand(exact_at[p], cos_alpha[p], 1.0, ks[p], coupling, work_ratio);
+        truth[p] = Truth(expand(exact_at[p], cos_alpha[p], 1.0, ks[p], coupling, work_ratio));
       }
+      PointOrder<kRollTestPoints> order;
       auto error_of = [&](int stencil, double cutoff) {
-        PointError e;
-        double q[kStored];
-        for (int p = 0; p < kRollTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
-          t.interpolate_roll(cell, kRollTestLocal[p], stencil, q);
-          e.include(
-              point_error(expand(q, cos_alpha[p], 1.0, ks[p], coupling, work_ratio), truth[p]));
-        }
-        return e;
+        return measure(order, tolerance, cutoff, [&](int p) {
+          double q[kStored];
+          if (finite)
+            interpolate_roll_test_point(t, cell, kRollTestLocal[p], stencil, q);
+          else
+            t.interpolate_roll(cell, kRollTestLocal[p], stencil, q);
+          return point_error(expand(q, cos_alpha[p], 1.0, ks[p], coupling, work_ratio), truth[p]);
+        });
       };
       PointError e;
       const uint8_t code = choose_stencil(true, tolerance, error_of, &e);
