@@ -590,29 +590,39 @@ double excess(const PointError& e, double tolerance) {
 }
 
 // The stencil of a cell: the centred one when its measured error passes, else the
-// candidate with the smallest; kFallback when that does not pass either.
-// error_of(code, cutoff) measures one stencil at the cell's test points, and may
-// stop early once the excess is above `cutoff` (such a stencil is not chosen).
+// passing candidate with the smallest (the first in code order among equals);
+// kFallback when none passes (`error` is then not set). error_of(code, cutoff)
+// measures one stencil at the cell's test points, and may stop early once the excess
+// is above `cutoff` (such a stencil is not chosen): above 1 until one passes, then
+// above the best. The candidates are measured with `hint` first (a neighbour's
+// stencil, or -1), as a low cutoff found early stops the others sooner; the choice
+// does not depend on the order.
 template <class ErrorOf>
-uint8_t choose_stencil(bool roll_plane, double tolerance, ErrorOf&& error_of, PointError* error) {
-  int best = kCentred;
-  PointError best_error = error_of(kCentred, INFINITY);
-  double best_excess = excess(best_error, tolerance);
-  if (!(best_excess <= 1.0)) {
-    for (int s = 0; s < kStencils; ++s) {
-      if (s == kCentred || (roll_plane && stencil_shift(s, 1) != 0)) continue;
-      const double cutoff = std::isnan(best_excess) ? INFINITY : best_excess;
-      const PointError e = error_of(s, cutoff);
-      const double now = excess(e, tolerance);
-      if (now < best_excess || (std::isnan(best_excess) && !std::isnan(now))) {
-        best = s;
-        best_error = e;
-        best_excess = now;
-      }
+uint8_t choose_stencil(bool roll_plane, double tolerance, int hint, ErrorOf&& error_of,
+                       PointError* error) {
+  const PointError centred = error_of(kCentred, INFINITY);
+  if (excess(centred, tolerance) <= 1.0) {
+    *error = centred;
+    return kCentred;
+  }
+  auto candidate = [&](int s) {
+    return s >= 0 && s < kStencils && s != kCentred && !(roll_plane && stencil_shift(s, 1) != 0);
+  };
+  if (!candidate(hint)) hint = -1;
+  int best = -1;
+  double best_excess = 1.0;
+  for (int k = hint < 0 ? 0 : -1; k < kStencils; ++k) {
+    const int s = k < 0 ? hint : k;
+    if (!candidate(s) || (k >= 0 && s == hint)) continue;
+    const PointError e = error_of(s, best_excess);
+    const double now = excess(e, tolerance);
+    if (now <= 1.0 && (best < 0 || now < best_excess || (now == best_excess && s < best))) {
+      best = s;
+      best_excess = now;
+      *error = e;
     }
   }
-  *error = best_error;
-  return best_excess <= 1.0 ? static_cast<uint8_t>(best) : kFallback;
+  return best < 0 ? kFallback : static_cast<uint8_t>(best);
 }
 
 // The order in which a cell's test points are tried. A stencil's measurement stops at
@@ -831,7 +841,8 @@ void ImpactTableAccess::volume_stencils(Build& b) {
           });
         };
         PointError e;
-        const uint8_t code = choose_stencil(false, tolerance, error_of, &e);
+        const int hint = is > 0 ? t.cell_stencil_[ia * plane_cells + in_plane - 1] : -1;
+        const uint8_t code = choose_stencil(false, tolerance, hint, error_of, &e);
         t.cell_stencil_[ia * plane_cells + in_plane] = code;
         if (code == kFallback)
           ++tally.fallback;
@@ -907,7 +918,8 @@ void ImpactTableAccess::roll_stencils(Build& b) {
         });
       };
       PointError e;
-      const uint8_t code = choose_stencil(true, tolerance, error_of, &e);
+      const int hint = is > 0 ? t.roll_stencil_[ia * (rs - 1) + is - 1] : -1;
+      const uint8_t code = choose_stencil(true, tolerance, hint, error_of, &e);
       t.roll_stencil_[ia * (rs - 1) + is] = code;
       if (code == kFallback)
         ++tally.roll_fallback;
