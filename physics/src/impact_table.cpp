@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <numbers>
@@ -133,36 +134,47 @@ struct Point {
   double alpha_deg, kt, ks;
 };
 
-// The exact method's stored outcome for V0 = 1 at each point, kStored numbers per
-// point into out; at alpha = 0 its limit (the ball passes unchanged). NaN where the
-// exact method gave no usable answer, which makes every cell that needs the value
-// fall back. The impacts are resolved together (resolve_impacts: SIMD lanes), each
-// exactly as resolve_impact would, in buffers a build thread reuses.
+// The exact method's stored outcome for V0 = 1 at each point of some lists, kStored
+// numbers per point into the list's out; at alpha = 0 its limit (the ball passes
+// unchanged). NaN where the exact method gave no usable answer, which makes every
+// cell that needs the value fall back. A point whose out already holds a value (not
+// NaN: one known from an earlier stage) is not resolved again. The impacts of all the
+// lists are resolved together (resolve_impacts: SIMD lanes, one batch, so that few
+// lanes idle at its end), each exactly as resolve_impact would, in buffers a build
+// thread reuses.
 struct ExactBuffers {
   std::vector<BallState> incoming;
-  std::vector<size_t> index;
+  std::vector<double*> target;
   std::vector<ImpactResult> results;
 };
 
-void exact_stored(const CushionParams& params, const std::vector<Point>& points, double* out,
+struct PointList {
+  const std::vector<Point>& points;
+  double* out;
+};
+
+void exact_stored(const CushionParams& params, std::initializer_list<PointList> lists,
                   ExactBuffers& buffers) {
   std::vector<BallState>& incoming = buffers.incoming;
-  std::vector<size_t>& index = buffers.index;
+  std::vector<double*>& target = buffers.target;
   incoming.clear();
-  index.clear();
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Point& pt = points[i];
-    double* o = out + i * kStored;
-    if (pt.alpha_deg == 0.0) {
-      o[kUx] = 1.0;
-      o[kUy] = 0.0;
-      o[kOx] = 0.0;
-      o[kOz] = pt.ks;
-      o[kPc] = o[kPt] = o[kWc] = 0.0;
-      continue;
+  target.clear();
+  for (const PointList& list : lists) {
+    for (size_t i = 0; i < list.points.size(); ++i) {
+      const Point& pt = list.points[i];
+      double* o = list.out + i * kStored;
+      if (pt.alpha_deg == 0.0) {
+        o[kUx] = 1.0;
+        o[kUy] = 0.0;
+        o[kOx] = 0.0;
+        o[kOz] = pt.ks;
+        o[kPc] = o[kPt] = o[kWc] = 0.0;
+        continue;
+      }
+      if (!std::isnan(o[kUx])) continue;
+      incoming.push_back(incoming_state_k(1.0, pt.alpha_deg, pt.kt, pt.ks, params.radius));
+      target.push_back(o);
     }
-    incoming.push_back(incoming_state_k(1.0, pt.alpha_deg, pt.kt, pt.ks, params.radius));
-    index.push_back(i);
   }
   ImpactOptions options;
   options.tolerance = kNodeTolerance;
@@ -171,7 +183,7 @@ void exact_stored(const CushionParams& params, const std::vector<Point>& points,
   resolve_impacts(params, incoming, results, options);
   for (size_t j = 0; j < results.size(); ++j) {
     const ImpactResult& r = results[j];
-    double* o = out + index[j] * kStored;
+    double* o = target[j];
     if (!usable(r.status)) {
       std::fill(o, o + kStored, kNaN);
       continue;
@@ -701,9 +713,10 @@ struct ImpactTableAccess::Build {
   std::vector<double> alpha_faces;
   std::vector<double> alpha_edges;
 
-  // The exact outcomes at points, on build thread `thread`.
-  void exact(const std::vector<Point>& points, double* out, int thread) {
-    exact_stored(exact_params, points, out, buffers[thread]);
+  // The exact outcomes at the points of some lists, on build thread `thread`; an out
+  // must hold NaN where a value is wanted.
+  void exact(std::initializer_list<PointList> lists, int thread) {
+    exact_stored(exact_params, lists, buffers[thread]);
   }
   static double mid(const ImpactTable::Axis& axis, int i) {
     return 0.5 * (axis.node(i) + axis.node(i + 1));
@@ -761,7 +774,7 @@ void ImpactTableAccess::volume_nodes(Build& b) {
   const size_t plane_nodes = static_cast<size_t>(nt) * ns;
   const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
   assign_nodes(&t.nodes_, na * plane_nodes * kStored, kNaN);
-  b.alpha_faces.assign(na * plane_cells * kStored, 0.0);
+  b.alpha_faces.assign(na * plane_cells * kStored, kNaN);
   parallel_for(b.threads, na, [&](int ia, int id) {
     const double alpha = axes[0].node(ia);
     std::vector<Point> nodes, faces;
@@ -770,8 +783,9 @@ void ImpactTableAccess::volume_nodes(Build& b) {
     for (int it = 0; it < nt - 1; ++it)
       for (int is = 0; is < ns - 1; ++is)
         faces.push_back({alpha, Build::mid(axes[1], it), Build::mid(axes[2], is)});
-    b.exact(nodes, &t.nodes_[ia * plane_nodes * kStored], id);
-    b.exact(faces, &b.alpha_faces[ia * plane_cells * kStored], id);
+    b.exact({{nodes, &t.nodes_[ia * plane_nodes * kStored]},
+             {faces, &b.alpha_faces[ia * plane_cells * kStored]}},
+            id);
     b.tallies[id].test_points += static_cast<int64_t>(plane_cells);
   });
 }
@@ -802,11 +816,12 @@ void ImpactTableAccess::volume_stencils(Build& b) {
         if (it < nt - 1) sidespin_points.push_back({alpha, Build::mid(axes[1], it), axes[2].node(is)});
       }
     }
-    std::vector<double> centres(plane_cells * kStored), topspin_faces(nt * (ns - 1) * kStored),
-        sidespin_faces((nt - 1) * ns * kStored);
-    b.exact(centre_points, centres.data(), id);
-    b.exact(topspin_points, topspin_faces.data(), id);
-    b.exact(sidespin_points, sidespin_faces.data(), id);
+    std::vector<double> centres(plane_cells * kStored, kNaN),
+        topspin_faces(nt * (ns - 1) * kStored, kNaN), sidespin_faces((nt - 1) * ns * kStored, kNaN);
+    b.exact({{centre_points, centres.data()},
+             {topspin_points, topspin_faces.data()},
+             {sidespin_points, sidespin_faces.data()}},
+            id);
     tally.test_points += static_cast<int64_t>(plane_cells + nt * (ns - 1) + (nt - 1) * ns);
 
     for (int it = 0; it < nt - 1; ++it) {
@@ -859,14 +874,15 @@ void ImpactTableAccess::roll_nodes(Build& b) {
   const ImpactTable::Axis* roll = t.roll_axes_;
   const int ra = roll[0].nodes, rs = roll[1].nodes;
   assign_nodes(&t.roll_nodes_, static_cast<size_t>(ra) * rs * kStored, kNaN);
-  b.alpha_edges.assign(static_cast<size_t>(ra) * (rs - 1) * kStored, 0.0);
+  b.alpha_edges.assign(static_cast<size_t>(ra) * (rs - 1) * kStored, kNaN);
   parallel_for(b.threads, ra, [&](int ia, int id) {
     const double alpha = roll[0].node(ia);
     std::vector<Point> nodes, edges;
     for (int is = 0; is < rs; ++is) nodes.push_back({alpha, 1.0, roll[1].node(is)});
     for (int is = 0; is < rs - 1; ++is) edges.push_back({alpha, 1.0, Build::mid(roll[1], is)});
-    b.exact(nodes, &t.roll_nodes_[static_cast<size_t>(ia) * rs * kStored], id);
-    b.exact(edges, &b.alpha_edges[static_cast<size_t>(ia) * (rs - 1) * kStored], id);
+    b.exact({{nodes, &t.roll_nodes_[static_cast<size_t>(ia) * rs * kStored]},
+             {edges, &b.alpha_edges[static_cast<size_t>(ia) * (rs - 1) * kStored]}},
+            id);
     b.tallies[id].test_points += rs - 1;
   });
 }
@@ -890,9 +906,8 @@ void ImpactTableAccess::roll_stencils(Build& b) {
       if (is < rs - 1) centre_points.push_back({alpha, 1.0, Build::mid(roll[1], is)});
       edge_points.push_back({alpha, 1.0, roll[1].node(is)});
     }
-    std::vector<double> centres((rs - 1) * kStored), sidespin_edges(rs * kStored);
-    b.exact(centre_points, centres.data(), id);
-    b.exact(edge_points, sidespin_edges.data(), id);
+    std::vector<double> centres((rs - 1) * kStored, kNaN), sidespin_edges(rs * kStored, kNaN);
+    b.exact({{centre_points, centres.data()}, {edge_points, sidespin_edges.data()}}, id);
     tally.test_points += 2 * rs - 1;
     for (int is = 0; is < rs - 1; ++is) {
       const int cell[2] = {ia, is};
