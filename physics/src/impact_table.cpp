@@ -319,6 +319,7 @@ class Writer {
     bytes_.insert(bytes_.end(), p, p + size);
   }
   std::vector<char>& bytes() { return bytes_; }
+  void reserve(size_t size) { bytes_.reserve(size); }
 
  private:
   std::vector<char> bytes_;
@@ -765,6 +766,17 @@ struct ImpactTableAccess::Build {
   static double mid(const ImpactTable::Axis& axis, int i) {
     return 0.5 * (axis.node(i) + axis.node(i + 1));
   }
+  // For each node of `from`, the node of `to` at exactly the same coordinate, or -1.
+  static std::vector<int> same_nodes(const ImpactTable::Axis& from, const ImpactTable::Axis& to) {
+    std::vector<double> at(to.nodes);
+    for (int j = 0; j < to.nodes; ++j) at[j] = to.node(j);
+    std::vector<int> same(from.nodes, -1);
+    for (int i = 0; i < from.nodes; ++i) {
+      const auto j = std::lower_bound(at.begin(), at.end(), from.node(i));
+      if (j != at.end() && *j == from.node(i)) same[i] = static_cast<int>(j - at.begin());
+    }
+    return same;
+  }
   static double at(const ImpactTable::Axis& axis, int i, double local) {
     return axis.node(i) + local * (axis.node(i + 1) - axis.node(i));
   }
@@ -919,8 +931,26 @@ void ImpactTableAccess::roll_nodes(Build& b) {
   const int ra = roll[0].nodes, rs = roll[1].nodes;
   assign_nodes(&t.roll_nodes_, static_cast<size_t>(ra) * rs * kStored, kNaN);
   b.alpha_edges.assign(static_cast<size_t>(ra) * (rs - 1) * kStored, kNaN);
+  // Nodes of the plane that are nodes of the volume too (k_T = 1 is a node of its k_T
+  // axis; in the default table every fourth node along both axes) take the volume's
+  // values instead of being resolved again.
+  const ImpactTable::Axis* axes = t.axes_;
+  int kt_one = -1;
+  for (int it = 0; it < axes[1].nodes; ++it)
+    if (axes[1].node(it) == 1.0) kt_one = it;
+  const std::vector<int> alpha_in_volume = Build::same_nodes(roll[0], axes[0]);
+  const std::vector<int> ks_in_volume = Build::same_nodes(roll[1], axes[2]);
+  const size_t nt = static_cast<size_t>(axes[1].nodes), ns = static_cast<size_t>(axes[2].nodes);
   parallel_for(b.threads, ra, [&](int ia, int id) {
     const double alpha = roll[0].node(ia);
+    if (kt_one >= 0 && alpha_in_volume[ia] >= 0) {
+      for (int is = 0; is < rs; ++is) {
+        if (ks_in_volume[is] < 0) continue;
+        const double* from =
+            &t.nodes_[((alpha_in_volume[ia] * nt + kt_one) * ns + ks_in_volume[is]) * kStored];
+        std::copy(from, from + kStored, &t.roll_nodes_[(static_cast<size_t>(ia) * rs + is) * kStored]);
+      }
+    }
     std::vector<Point> nodes, edges;
     for (int is = 0; is < rs; ++is) nodes.push_back({alpha, 1.0, roll[1].node(is)});
     for (int is = 0; is < rs - 1; ++is) edges.push_back({alpha, 1.0, Build::mid(roll[1], is)});
@@ -1206,6 +1236,9 @@ std::string ImpactTable::cache_file_name(const CushionParams& params,
 bool ImpactTableAccess::save(const ImpactTable& t, const std::string& path) {
   if (t.empty()) return false;
   Writer out;
+  // The header and checksum take well under a kilobyte; one buffer for the whole file.
+  out.reserve(1024 + (t.nodes_.size() + t.roll_nodes_.size()) * sizeof(double) +
+              t.cell_stencil_.size() + t.roll_stencil_.size());
   out.put_bytes(kMagic, sizeof kMagic);
   out.put(kFormatVersion);
   out.put(kEndianMark);
