@@ -23,7 +23,6 @@
 #include <random>
 #include <thread>
 
-#include "impact_methods.hpp"
 #include "impact_model.hpp"
 
 #ifdef __linux__
@@ -139,107 +138,64 @@ struct Point {
 // numbers per point into the list's out; at alpha = 0 its limit (the ball passes
 // unchanged). NaN where the exact method gave no usable answer, which makes every
 // cell that needs the value fall back. A point whose out already holds a value (not
-// NaN: one known from an earlier stage) is not resolved again.
-//
-// The impacts of all the lists go to the exact method's SIMD lanes as one batch (so
-// that few lanes idle at its end), handed over one at a time as lanes free up, each
-// the scaled impact resolve_impacts would solve for the incoming state, and each
-// outcome taken back to physical units the way resolve_impacts does: the same bits,
-// without the parts of an ImpactResult the table does not read (rebound speed and
-// angle, transitions, messages). The build's states pass the incoming checks except
-// where one is not finite, which is unusable as in resolve_impact.
+// NaN: one known from an earlier stage) is not resolved again. The impacts of all the
+// lists are resolved together (resolve_impacts: SIMD lanes, one batch, so that few
+// lanes idle at its end), each exactly as resolve_impact would, in buffers a build
+// thread reuses.
+struct ExactBuffers {
+  std::vector<BallState> incoming;
+  std::vector<double*> target;
+  std::vector<ImpactResult> results;
+};
+
 struct PointList {
   const std::vector<Point>& points;
   double* out;
 };
 
-class ExactSource final : public detail::BatchImpacts {
- public:
-  explicit ExactSource(const CushionParams& params)
-      : params_(&params), geometry_(detail::Geometry::from(params)) {}
-  const detail::Geometry& geometry() const { return geometry_; }
-
-  void reset(std::initializer_list<PointList> lists) {
-    lists_ = lists;
-    list_ = 0;
-    point_ = 0;
-    target_.clear();
-    scale_.clear();
-  }
-
-  bool next(detail::ScaledImpact* impact, size_t* id) override {
-    for (; list_ < lists_.size(); ++list_, point_ = 0) {
-      const PointList& list = lists_.begin()[list_];
-      while (point_ < list.points.size()) {
-        const Point& pt = list.points[point_];
-        double* o = list.out + point_ * kStored;
-        ++point_;
-        if (pt.alpha_deg == 0.0) {
-          o[kUx] = 1.0;
-          o[kUy] = 0.0;
-          o[kOx] = 0.0;
-          o[kOz] = pt.ks;
-          o[kPc] = o[kPt] = o[kWc] = 0.0;
-          continue;
-        }
-        if (!std::isnan(o[kUx])) continue;
-        const BallState in = incoming_state_k(1.0, pt.alpha_deg, pt.kt, pt.ks, params_->radius);
-        const Vec3& v = in.velocity;
-        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !is_finite(in.spin) || !(v.y > 0.0)) {
-          std::fill(o, o + kStored, kNaN);
-          continue;
-        }
-        // resolve_impact's scaling (cushion_impact.cpp, prepare).
-        impact->geometry = geometry_;
-        impact->restitution = params_->restitution;
-        impact->speed_scale = std::hypot(v.x, v.y);
-        const double speed = impact->speed_scale;
-        const double spin_scale = params_->radius / speed;
-        impact->incoming = {v.x / speed, v.y / speed, in.spin.x * spin_scale,
-                            in.spin.y * spin_scale, in.spin.z * spin_scale};
-        *id = target_.size();
-        target_.push_back(o);
-        scale_.push_back(speed);
-        return true;
+void exact_stored(const CushionParams& params, std::initializer_list<PointList> lists,
+                  ExactBuffers& buffers) {
+  std::vector<BallState>& incoming = buffers.incoming;
+  std::vector<double*>& target = buffers.target;
+  incoming.clear();
+  target.clear();
+  for (const PointList& list : lists) {
+    for (size_t i = 0; i < list.points.size(); ++i) {
+      const Point& pt = list.points[i];
+      double* o = list.out + i * kStored;
+      if (pt.alpha_deg == 0.0) {
+        o[kUx] = 1.0;
+        o[kUy] = 0.0;
+        o[kOx] = 0.0;
+        o[kOz] = pt.ks;
+        o[kPc] = o[kPt] = o[kWc] = 0.0;
+        continue;
       }
+      if (!std::isnan(o[kUx])) continue;
+      incoming.push_back(incoming_state_k(1.0, pt.alpha_deg, pt.kt, pt.ks, params.radius));
+      target.push_back(o);
     }
-    return false;
   }
-
-  void done(size_t id, const detail::ScaledOutcome& out) override {
-    double* o = target_[id];
-    if (!usable(out.status)) {
+  ImpactOptions options;
+  options.tolerance = kNodeTolerance;
+  std::vector<ImpactResult>& results = buffers.results;
+  results.resize(incoming.size());
+  resolve_impacts(params, incoming, results, options);
+  for (size_t j = 0; j < results.size(); ++j) {
+    const ImpactResult& r = results[j];
+    double* o = target[j];
+    if (!usable(r.status)) {
       std::fill(o, o + kStored, kNaN);
-      return;
+      continue;
     }
-    // resolve_impact's units (cushion_impact.cpp, to_result), then the table's.
-    const double scale = scale_[id];
-    const double spin_unit = scale / params_->radius;
-    const double impulse_unit = params_->mass * scale;
-    const double work_unit = params_->mass * scale * scale;
-    o[kUx] = out.outgoing.ux * scale;
-    o[kUy] = out.outgoing.uy * scale;
-    o[kOx] = (out.outgoing.ox * spin_unit) * params_->radius;
-    o[kOz] = (out.outgoing.oz * spin_unit) * params_->radius;
-    o[kPc] = (out.impulse_compression * impulse_unit) / params_->mass;
-    o[kPt] = (out.impulse_total * impulse_unit) / params_->mass;
-    o[kWc] = (out.work_compression * work_unit) / params_->mass;
+    o[kUx] = r.outgoing.velocity.x;
+    o[kUy] = r.outgoing.velocity.y;
+    o[kOx] = r.outgoing.spin.x * params.radius;
+    o[kOz] = r.outgoing.spin.z * params.radius;
+    o[kPc] = r.impulse_compression / params.mass;
+    o[kPt] = r.impulse_total / params.mass;
+    o[kWc] = r.work_compression / params.mass;
   }
-
- private:
-  const CushionParams* params_;
-  detail::Geometry geometry_;
-  std::initializer_list<PointList> lists_;
-  size_t list_ = 0, point_ = 0;
-  std::vector<double*> target_;  // of the impacts handed out
-  std::vector<double> scale_;
-};
-
-void exact_stored(std::initializer_list<PointList> lists, ExactSource& source) {
-  const ImpactOptions options;  // the exact method's defaults but the tolerance
-  source.reset(lists);
-  detail::solve_taylor_batch(source.geometry(), kNodeTolerance, options.max_steps,
-                             options.batch_lanes, source);
 }
 
 double rebound_angle(const Outcome& q) { return std::atan2(-q.uy, q.ux); }
@@ -751,7 +707,7 @@ struct ImpactTableAccess::Build {
   double coupling = 0.0, work_ratio = 0.0;
   int threads = 1;
   std::vector<Tally> tallies;  // one per build thread
-  std::vector<ExactSource> sources;  // one per build thread
+  std::vector<ExactBuffers> buffers;  // one per build thread
   // Exact outcomes at test points kept from one stage for the next: on the centres of
   // the cell faces normal to alpha (per alpha node), and on the natural-roll plane at
   // the midpoints of the cell edges along k_S (per alpha node).
@@ -761,7 +717,7 @@ struct ImpactTableAccess::Build {
   // The exact outcomes at the points of some lists, on build thread `thread`; an out
   // must hold NaN where a value is wanted.
   void exact(std::initializer_list<PointList> lists, int thread) {
-    exact_stored(lists, sources[thread]);
+    exact_stored(exact_params, lists, buffers[thread]);
   }
   static double mid(const ImpactTable::Axis& axis, int i) {
     return 0.5 * (axis.node(i) + axis.node(i + 1));
@@ -811,7 +767,7 @@ ImpactTable ImpactTableAccess::build(const CushionParams& params,
                                            : static_cast<int>(std::thread::hardware_concurrency()),
                        1);
   b.tallies.resize(b.threads);
-  b.sources.assign(b.threads, ExactSource(b.exact_params));
+  b.buffers.resize(b.threads);
 
   volume_nodes(b);
   volume_stencils(b);
