@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <numbers>
@@ -133,36 +134,47 @@ struct Point {
   double alpha_deg, kt, ks;
 };
 
-// The exact method's stored outcome for V0 = 1 at each point, kStored numbers per
-// point into out; at alpha = 0 its limit (the ball passes unchanged). NaN where the
-// exact method gave no usable answer, which makes every cell that needs the value
-// fall back. The impacts are resolved together (resolve_impacts: SIMD lanes), each
-// exactly as resolve_impact would, in buffers a build thread reuses.
+// The exact method's stored outcome for V0 = 1 at each point of some lists, kStored
+// numbers per point into the list's out; at alpha = 0 its limit (the ball passes
+// unchanged). NaN where the exact method gave no usable answer, which makes every
+// cell that needs the value fall back. A point whose out already holds a value (not
+// NaN: one known from an earlier stage) is not resolved again. The impacts of all the
+// lists are resolved together (resolve_impacts: SIMD lanes, one batch, so that few
+// lanes idle at its end), each exactly as resolve_impact would, in buffers a build
+// thread reuses.
 struct ExactBuffers {
   std::vector<BallState> incoming;
-  std::vector<size_t> index;
+  std::vector<double*> target;
   std::vector<ImpactResult> results;
 };
 
-void exact_stored(const CushionParams& params, const std::vector<Point>& points, double* out,
+struct PointList {
+  const std::vector<Point>& points;
+  double* out;
+};
+
+void exact_stored(const CushionParams& params, std::initializer_list<PointList> lists,
                   ExactBuffers& buffers) {
   std::vector<BallState>& incoming = buffers.incoming;
-  std::vector<size_t>& index = buffers.index;
+  std::vector<double*>& target = buffers.target;
   incoming.clear();
-  index.clear();
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Point& pt = points[i];
-    double* o = out + i * kStored;
-    if (pt.alpha_deg == 0.0) {
-      o[kUx] = 1.0;
-      o[kUy] = 0.0;
-      o[kOx] = 0.0;
-      o[kOz] = pt.ks;
-      o[kPc] = o[kPt] = o[kWc] = 0.0;
-      continue;
+  target.clear();
+  for (const PointList& list : lists) {
+    for (size_t i = 0; i < list.points.size(); ++i) {
+      const Point& pt = list.points[i];
+      double* o = list.out + i * kStored;
+      if (pt.alpha_deg == 0.0) {
+        o[kUx] = 1.0;
+        o[kUy] = 0.0;
+        o[kOx] = 0.0;
+        o[kOz] = pt.ks;
+        o[kPc] = o[kPt] = o[kWc] = 0.0;
+        continue;
+      }
+      if (!std::isnan(o[kUx])) continue;
+      incoming.push_back(incoming_state_k(1.0, pt.alpha_deg, pt.kt, pt.ks, params.radius));
+      target.push_back(o);
     }
-    incoming.push_back(incoming_state_k(1.0, pt.alpha_deg, pt.kt, pt.ks, params.radius));
-    index.push_back(i);
   }
   ImpactOptions options;
   options.tolerance = kNodeTolerance;
@@ -171,7 +183,7 @@ void exact_stored(const CushionParams& params, const std::vector<Point>& points,
   resolve_impacts(params, incoming, results, options);
   for (size_t j = 0; j < results.size(); ++j) {
     const ImpactResult& r = results[j];
-    double* o = out + index[j] * kStored;
+    double* o = target[j];
     if (!usable(r.status)) {
       std::fill(o, o + kStored, kNaN);
       continue;
@@ -204,10 +216,21 @@ struct PointError {
   }
 };
 
-PointError point_error(const Outcome& q, const Outcome& x) {
+// The exact outcome at a test point, with its rebound speed and angle, which every
+// stencil tried at the point is compared with.
+struct Truth {
+  Outcome o;
+  double speed = 0.0, angle = 0.0;
+  Truth() = default;
+  explicit Truth(const Outcome& x)
+      : o(x), speed(std::sqrt(x.ux * x.ux + x.uy * x.uy)), angle(rebound_angle(x)) {}
+};
+
+PointError point_error(const Outcome& q, const Truth& truth) {
+  const Outcome& x = truth.o;
   PointError e;
-  e.speed = std::abs(std::sqrt(q.ux * q.ux + q.uy * q.uy) - std::sqrt(x.ux * x.ux + x.uy * x.uy));
-  e.angle_deg = std::abs(rebound_angle(q) - rebound_angle(x)) / kDegree;
+  e.speed = std::abs(std::sqrt(q.ux * q.ux + q.uy * q.uy) - truth.speed);
+  e.angle_deg = std::abs(rebound_angle(q) - truth.angle) / kDegree;
   for (double d : {q.ux - x.ux, q.uy - x.uy, q.ox - x.ox, q.oy - x.oy, q.oz - x.oz})
     e.state = std::max(e.state, std::abs(d));
   for (double d : {q.pc - x.pc, q.pt - x.pt, q.wc - x.wc, q.wt - x.wt})
@@ -252,6 +275,7 @@ class Writer {
     bytes_.insert(bytes_.end(), p, p + size);
   }
   std::vector<char>& bytes() { return bytes_; }
+  void reserve(size_t size) { bytes_.reserve(size); }
 
  private:
   std::vector<char> bytes_;
@@ -317,6 +341,12 @@ class ImpactTableAccess {
   static void roll_nodes(Build& b);
   static void roll_stencils(Build& b);
   static void measured_error(Build& b);
+  // ImpactTable::interpolate and interpolate_roll at a test point, to the same bits,
+  // for a table whose nodes are all finite (see add_terms).
+  static void interpolate_test_point(const ImpactTable& t, const int cell[3],
+                                     const double local[3], int stencil, double* out);
+  static void interpolate_roll_test_point(const ImpactTable& t, const int cell[2],
+                                          const double local[2], int stencil, double* out);
   static bool save(const ImpactTable& t, const std::string& path);
   static std::optional<ImpactTable> load(const std::string& path);
   static bool same_shape(const ImpactTableOptions& a, const ImpactTableOptions& b) {
@@ -429,7 +459,73 @@ inline void add_row(const double* row, double scale, const double w[4], double a
         a0 * row[q] + a1 * row[kStored + q] + a2 * row[2 * kStored + q] + a3 * row[3 * kStored + q];
 }
 
+// add_row where only the weights w[k] != 0 count, when the row's values are finite:
+// a zero weight makes its term a zero, and adding a zero leaves a sum unchanged (acc
+// is never -0: it starts at +0 and a sum of round-to-nearest is -0 only when both
+// addends are). `only` names the one nonzero weight, or is -1 to take all four.
+inline void add_terms(const double* row, double scale, const double w[4], int only,
+                      double acc[kStored]) {
+  if (only < 0) return add_row(row, scale, w, acc);
+  const double a = scale * w[only];
+  const double* r = row + only * kStored;
+  for (int q = 0; q < kStored; ++q) acc[q] += a * r[q];
+}
+
+// The one nonzero weight among four, or -1: a test point on a node plane (local 0 or
+// 1) has weights 1 and three zeros along that axis.
+inline int one_hot(const double w[4]) {
+  int only = -1;
+  for (int k = 0; k < 4; ++k) {
+    if (w[k] == 0.0) continue;
+    if (only >= 0) return -1;
+    only = k;
+  }
+  return only;
+}
+
 }  // namespace
+
+void ImpactTableAccess::interpolate_test_point(const ImpactTable& t, const int cell[3],
+                                               const double local[3], int stencil,
+                                               double* out) {
+  int start[3];
+  double w[3][4];
+  for (int a = 0; a < 3; ++a) {
+    start[a] = t.axes_[a].stencil_start(cell[a], stencil_shift(stencil, a));
+    lagrange_weights(cell[a] - start[a] + local[a], w[a]);
+  }
+  const int only = one_hot(w[2]);
+  const size_t nt = static_cast<size_t>(t.axes_[1].nodes), ns = static_cast<size_t>(t.axes_[2].nodes);
+  double acc[kStored] = {};
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const double scale = w[0][i] * w[1][j];
+      if (scale == 0.0) continue;
+      add_terms(&t.nodes_[(((start[0] + i) * nt + start[1] + j) * ns + start[2]) * kStored], scale,
+                w[2], only, acc);
+    }
+  }
+  std::copy(acc, acc + kStored, out);
+}
+
+void ImpactTableAccess::interpolate_roll_test_point(const ImpactTable& t, const int cell[2],
+                                                    const double local[2], int stencil,
+                                                    double* out) {
+  int start[2];
+  double w[2][4];
+  for (int a = 0; a < 2; ++a) {
+    start[a] = t.roll_axes_[a].stencil_start(cell[a], stencil_shift(stencil, 2 * a));
+    lagrange_weights(cell[a] - start[a] + local[a], w[a]);
+  }
+  const int only = one_hot(w[1]);
+  const size_t ns = static_cast<size_t>(t.roll_axes_[1].nodes);
+  double acc[kStored] = {};
+  for (int i = 0; i < 4; ++i)
+    if (w[0][i] != 0.0)
+      add_terms(&t.roll_nodes_[((start[0] + i) * ns + start[1]) * kStored], w[0][i], w[1], only,
+                acc);
+  std::copy(acc, acc + kStored, out);
+}
 
 void ImpactTable::interpolate(const int cell[3], const double local[3], int stencil,
                               double* out) const {
@@ -507,29 +603,89 @@ double excess(const PointError& e, double tolerance) {
 }
 
 // The stencil of a cell: the centred one when its measured error passes, else the
-// candidate with the smallest; kFallback when that does not pass either.
-// error_of(code, cutoff) measures one stencil at the cell's test points, and may
-// stop early once the excess is above `cutoff` (such a stencil is not chosen).
+// passing candidate with the smallest (the first in code order among equals);
+// kFallback when none passes (`error` is then not set). error_of(code, cutoff)
+// measures one stencil at the cell's test points, and may stop early once the excess
+// is above `cutoff` (such a stencil is not chosen): above 1 until one passes, then
+// above the best. The candidates are measured with `hint` first (a neighbour's
+// stencil, or -1), as a low cutoff found early stops the others sooner; the choice
+// does not depend on the order.
 template <class ErrorOf>
-uint8_t choose_stencil(bool roll_plane, double tolerance, ErrorOf&& error_of, PointError* error) {
-  int best = kCentred;
-  PointError best_error = error_of(kCentred, INFINITY);
-  double best_excess = excess(best_error, tolerance);
-  if (!(best_excess <= 1.0)) {
-    for (int s = 0; s < kStencils; ++s) {
-      if (s == kCentred || (roll_plane && stencil_shift(s, 1) != 0)) continue;
-      const double cutoff = std::isnan(best_excess) ? INFINITY : best_excess;
-      const PointError e = error_of(s, cutoff);
-      const double now = excess(e, tolerance);
-      if (now < best_excess || (std::isnan(best_excess) && !std::isnan(now))) {
-        best = s;
-        best_error = e;
-        best_excess = now;
-      }
+uint8_t choose_stencil(bool roll_plane, double tolerance, int hint, ErrorOf&& error_of,
+                       PointError* error) {
+  const PointError centred = error_of(kCentred, INFINITY);
+  if (excess(centred, tolerance) <= 1.0) {
+    *error = centred;
+    return kCentred;
+  }
+  auto candidate = [&](int s) {
+    return s >= 0 && s < kStencils && s != kCentred && !(roll_plane && stencil_shift(s, 1) != 0);
+  };
+  if (!candidate(hint)) hint = -1;
+  int best = -1;
+  double best_excess = 1.0;
+  for (int k = hint < 0 ? 0 : -1; k < kStencils; ++k) {
+    const int s = k < 0 ? hint : k;
+    if (!candidate(s) || (k >= 0 && s == hint)) continue;
+    const PointError e = error_of(s, best_excess);
+    const double now = excess(e, tolerance);
+    if (now <= 1.0 && (best < 0 || now < best_excess || (now == best_excess && s < best))) {
+      best = s;
+      best_excess = now;
+      *error = e;
     }
   }
-  *error = best_error;
-  return best_excess <= 1.0 ? static_cast<uint8_t>(best) : kFallback;
+  return best < 0 ? kFallback : static_cast<uint8_t>(best);
+}
+
+// The order in which a cell's test points are tried. A stencil's measurement stops at
+// the first point that takes its excess over the cutoff, and the stencil chosen does
+// not depend on the order: a stencil measured in full has the maximum over its points
+// whatever the order, and one stopped early is over the cutoff in any order. The
+// point that stopped the last stencil goes first (the centred stencil's worst point
+// to begin with), as the next stencil most likely fails there too.
+template <int N>
+class PointOrder {
+ public:
+  PointOrder() {
+    for (int k = 0; k < N; ++k) order_[k] = k;
+  }
+  int operator[](int k) const { return order_[k]; }
+  void to_front(int k) {
+    const int p = order_[k];
+    for (int i = k; i > 0; --i) order_[i] = order_[i - 1];
+    order_[0] = p;
+  }
+
+ private:
+  int order_[N];
+};
+
+// Measures a stencil at the test points in `order`: error_at(p) is its error at point
+// p. Stops once the excess is over `cutoff`, moving the point that took it there to
+// the front of the order.
+template <int N, class ErrorAt>
+PointError measure(PointOrder<N>& order, double tolerance, double cutoff, ErrorAt&& error_at) {
+  PointError e;
+  int worst = 0;
+  double worst_excess = -1.0;
+  for (int k = 0; k < N; ++k) {
+    if (excess(e, tolerance) > cutoff) {
+      order.to_front(k - 1);
+      return e;
+    }
+    const PointError at = error_at(order[k]);
+    if (cutoff == INFINITY) {
+      const double x = excess(at, tolerance);
+      if (!(x <= worst_excess)) {
+        worst = k;
+        worst_excess = std::isnan(x) ? INFINITY : x;
+      }
+    }
+    e.include(at);
+  }
+  if (cutoff == INFINITY) order.to_front(worst);
+  return e;
 }
 
 // What one build thread found.
@@ -558,12 +714,24 @@ struct ImpactTableAccess::Build {
   std::vector<double> alpha_faces;
   std::vector<double> alpha_edges;
 
-  // The exact outcomes at points, on build thread `thread`.
-  void exact(const std::vector<Point>& points, double* out, int thread) {
-    exact_stored(exact_params, points, out, buffers[thread]);
+  // The exact outcomes at the points of some lists, on build thread `thread`; an out
+  // must hold NaN where a value is wanted.
+  void exact(std::initializer_list<PointList> lists, int thread) {
+    exact_stored(exact_params, lists, buffers[thread]);
   }
   static double mid(const ImpactTable::Axis& axis, int i) {
     return 0.5 * (axis.node(i) + axis.node(i + 1));
+  }
+  // For each node of `from`, the node of `to` at exactly the same coordinate, or -1.
+  static std::vector<int> same_nodes(const ImpactTable::Axis& from, const ImpactTable::Axis& to) {
+    std::vector<double> at(to.nodes);
+    for (int j = 0; j < to.nodes; ++j) at[j] = to.node(j);
+    std::vector<int> same(from.nodes, -1);
+    for (int i = 0; i < from.nodes; ++i) {
+      const auto j = std::lower_bound(at.begin(), at.end(), from.node(i));
+      if (j != at.end() && *j == from.node(i)) same[i] = static_cast<int>(j - at.begin());
+    }
+    return same;
   }
   static double at(const ImpactTable::Axis& axis, int i, double local) {
     return axis.node(i) + local * (axis.node(i + 1) - axis.node(i));
@@ -618,7 +786,7 @@ void ImpactTableAccess::volume_nodes(Build& b) {
   const size_t plane_nodes = static_cast<size_t>(nt) * ns;
   const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
   assign_nodes(&t.nodes_, na * plane_nodes * kStored, kNaN);
-  b.alpha_faces.assign(na * plane_cells * kStored, 0.0);
+  b.alpha_faces.assign(na * plane_cells * kStored, kNaN);
   parallel_for(b.threads, na, [&](int ia, int id) {
     const double alpha = axes[0].node(ia);
     std::vector<Point> nodes, faces;
@@ -627,8 +795,9 @@ void ImpactTableAccess::volume_nodes(Build& b) {
     for (int it = 0; it < nt - 1; ++it)
       for (int is = 0; is < ns - 1; ++is)
         faces.push_back({alpha, Build::mid(axes[1], it), Build::mid(axes[2], is)});
-    b.exact(nodes, &t.nodes_[ia * plane_nodes * kStored], id);
-    b.exact(faces, &b.alpha_faces[ia * plane_cells * kStored], id);
+    b.exact({{nodes, &t.nodes_[ia * plane_nodes * kStored]},
+             {faces, &b.alpha_faces[ia * plane_cells * kStored]}},
+            id);
     b.tallies[id].test_points += static_cast<int64_t>(plane_cells);
   });
 }
@@ -640,9 +809,14 @@ void ImpactTableAccess::volume_stencils(Build& b) {
   const size_t plane_cells = static_cast<size_t>(nt - 1) * (ns - 1);
   const double tolerance = b.tolerance, coupling = b.coupling, work_ratio = b.work_ratio;
   t.cell_stencil_.assign((na - 1) * plane_cells, kFallback);
+  const bool finite = std::all_of(t.nodes_.begin(), t.nodes_.end(),
+                                  [](double x) { return std::isfinite(x); });
   parallel_for(b.threads, na - 1, [&](int ia, int id) {
     Tally& tally = b.tallies[id];
     const double alpha = Build::mid(axes[0], ia);
+    double cos_alpha[kTestPoints];
+    for (int p = 0; p < kTestPoints; ++p)
+      cos_alpha[p] = std::cos(Build::at(axes[0], ia, kTestLocal[p][0]) * kDegree);
     // Exact values at the centres (it, is), k_T faces (node it, mid is) and k_S
     // faces (mid it, node is) of this slab.
     std::vector<Point> centre_points, topspin_points, sidespin_points;
@@ -654,11 +828,12 @@ void ImpactTableAccess::volume_stencils(Build& b) {
         if (it < nt - 1) sidespin_points.push_back({alpha, Build::mid(axes[1], it), axes[2].node(is)});
       }
     }
-    std::vector<double> centres(plane_cells * kStored), topspin_faces(nt * (ns - 1) * kStored),
-        sidespin_faces((nt - 1) * ns * kStored);
-    b.exact(centre_points, centres.data(), id);
-    b.exact(topspin_points, topspin_faces.data(), id);
-    b.exact(sidespin_points, sidespin_faces.data(), id);
+    std::vector<double> centres(plane_cells * kStored, kNaN),
+        topspin_faces(nt * (ns - 1) * kStored, kNaN), sidespin_faces((nt - 1) * ns * kStored, kNaN);
+    b.exact({{centre_points, centres.data()},
+             {topspin_points, topspin_faces.data()},
+             {sidespin_points, sidespin_faces.data()}},
+            id);
     tally.test_points += static_cast<int64_t>(plane_cells + nt * (ns - 1) + (nt - 1) * ns);
 
     for (int it = 0; it < nt - 1; ++it) {
@@ -673,26 +848,28 @@ void ImpactTableAccess::volume_stencils(Build& b) {
             &topspin_faces[((it + 1) * (ns - 1) + is) * kStored],
             &sidespin_faces[(it * ns + is) * kStored],
             &sidespin_faces[(it * ns + is + 1) * kStored]};
-        Outcome truth[kTestPoints];
-        double cos_alpha[kTestPoints], kt[kTestPoints], ks[kTestPoints];
+        Truth truth[kTestPoints];
+        double kt[kTestPoints], ks[kTestPoints];
         for (int p = 0; p < kTestPoints; ++p) {
-          cos_alpha[p] = std::cos(Build::at(axes[0], ia, kTestLocal[p][0]) * kDegree);
           kt[p] = Build::at(axes[1], it, kTestLocal[p][1]);
           ks[p] = Build::at(axes[2], is, kTestLocal[p][2]);
-          truth[p] = expand(exact_at[p], cos_alpha[p], kt[p], ks[p], coupling, work_ratio);
+          truth[p] = Truth(expand(exact_at[p], cos_alpha[p], kt[p], ks[p], coupling, work_ratio));
         }
+        PointOrder<kTestPoints> order;
         auto error_of = [&](int stencil, double cutoff) {
-          PointError e;
-          double q[kStored];
-          for (int p = 0; p < kTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
-            t.interpolate(cell, kTestLocal[p], stencil, q);
-            e.include(
-                point_error(expand(q, cos_alpha[p], kt[p], ks[p], coupling, work_ratio), truth[p]));
-          }
-          return e;
+          return measure(order, tolerance, cutoff, [&](int p) {
+            double q[kStored];
+            if (finite)
+              interpolate_test_point(t, cell, kTestLocal[p], stencil, q);
+            else
+              t.interpolate(cell, kTestLocal[p], stencil, q);
+            return point_error(expand(q, cos_alpha[p], kt[p], ks[p], coupling, work_ratio),
+                               truth[p]);
+          });
         };
         PointError e;
-        const uint8_t code = choose_stencil(false, tolerance, error_of, &e);
+        const int hint = is > 0 ? t.cell_stencil_[ia * plane_cells + in_plane - 1] : -1;
+        const uint8_t code = choose_stencil(false, tolerance, hint, error_of, &e);
         t.cell_stencil_[ia * plane_cells + in_plane] = code;
         if (code == kFallback)
           ++tally.fallback;
@@ -709,14 +886,33 @@ void ImpactTableAccess::roll_nodes(Build& b) {
   const ImpactTable::Axis* roll = t.roll_axes_;
   const int ra = roll[0].nodes, rs = roll[1].nodes;
   assign_nodes(&t.roll_nodes_, static_cast<size_t>(ra) * rs * kStored, kNaN);
-  b.alpha_edges.assign(static_cast<size_t>(ra) * (rs - 1) * kStored, 0.0);
+  b.alpha_edges.assign(static_cast<size_t>(ra) * (rs - 1) * kStored, kNaN);
+  // Nodes of the plane that are nodes of the volume too (k_T = 1 is a node of its k_T
+  // axis; in the default table every fourth node along both axes) take the volume's
+  // values instead of being resolved again.
+  const ImpactTable::Axis* axes = t.axes_;
+  int kt_one = -1;
+  for (int it = 0; it < axes[1].nodes; ++it)
+    if (axes[1].node(it) == 1.0) kt_one = it;
+  const std::vector<int> alpha_in_volume = Build::same_nodes(roll[0], axes[0]);
+  const std::vector<int> ks_in_volume = Build::same_nodes(roll[1], axes[2]);
+  const size_t nt = static_cast<size_t>(axes[1].nodes), ns = static_cast<size_t>(axes[2].nodes);
   parallel_for(b.threads, ra, [&](int ia, int id) {
     const double alpha = roll[0].node(ia);
+    if (kt_one >= 0 && alpha_in_volume[ia] >= 0) {
+      for (int is = 0; is < rs; ++is) {
+        if (ks_in_volume[is] < 0) continue;
+        const double* from =
+            &t.nodes_[((alpha_in_volume[ia] * nt + kt_one) * ns + ks_in_volume[is]) * kStored];
+        std::copy(from, from + kStored, &t.roll_nodes_[(static_cast<size_t>(ia) * rs + is) * kStored]);
+      }
+    }
     std::vector<Point> nodes, edges;
     for (int is = 0; is < rs; ++is) nodes.push_back({alpha, 1.0, roll[1].node(is)});
     for (int is = 0; is < rs - 1; ++is) edges.push_back({alpha, 1.0, Build::mid(roll[1], is)});
-    b.exact(nodes, &t.roll_nodes_[static_cast<size_t>(ia) * rs * kStored], id);
-    b.exact(edges, &b.alpha_edges[static_cast<size_t>(ia) * (rs - 1) * kStored], id);
+    b.exact({{nodes, &t.roll_nodes_[static_cast<size_t>(ia) * rs * kStored]},
+             {edges, &b.alpha_edges[static_cast<size_t>(ia) * (rs - 1) * kStored]}},
+            id);
     b.tallies[id].test_points += rs - 1;
   });
 }
@@ -727,17 +923,21 @@ void ImpactTableAccess::roll_stencils(Build& b) {
   const int ra = roll[0].nodes, rs = roll[1].nodes;
   const double tolerance = b.tolerance, coupling = b.coupling, work_ratio = b.work_ratio;
   t.roll_stencil_.assign(static_cast<size_t>(ra - 1) * (rs - 1), kFallback);
+  const bool finite = std::all_of(t.roll_nodes_.begin(), t.roll_nodes_.end(),
+                                  [](double x) { return std::isfinite(x); });
   parallel_for(b.threads, ra - 1, [&](int ia, int id) {
     Tally& tally = b.tallies[id];
     const double alpha = Build::mid(roll[0], ia);
+    double cos_alpha[kRollTestPoints];
+    for (int p = 0; p < kRollTestPoints; ++p)
+      cos_alpha[p] = std::cos(Build::at(roll[0], ia, kRollTestLocal[p][0]) * kDegree);
     std::vector<Point> centre_points, edge_points;
     for (int is = 0; is < rs; ++is) {
       if (is < rs - 1) centre_points.push_back({alpha, 1.0, Build::mid(roll[1], is)});
       edge_points.push_back({alpha, 1.0, roll[1].node(is)});
     }
-    std::vector<double> centres((rs - 1) * kStored), sidespin_edges(rs * kStored);
-    b.exact(centre_points, centres.data(), id);
-    b.exact(edge_points, sidespin_edges.data(), id);
+    std::vector<double> centres((rs - 1) * kStored, kNaN), sidespin_edges(rs * kStored, kNaN);
+    b.exact({{centre_points, centres.data()}, {edge_points, sidespin_edges.data()}}, id);
     tally.test_points += 2 * rs - 1;
     for (int is = 0; is < rs - 1; ++is) {
       const int cell[2] = {ia, is};
@@ -745,25 +945,26 @@ void ImpactTableAccess::roll_stencils(Build& b) {
           &centres[is * kStored], &b.alpha_edges[(ia * (rs - 1) + is) * kStored],
           &b.alpha_edges[((ia + 1) * (rs - 1) + is) * kStored], &sidespin_edges[is * kStored],
           &sidespin_edges[(is + 1) * kStored]};
-      Outcome truth[kRollTestPoints];
-      double cos_alpha[kRollTestPoints], ks[kRollTestPoints];
+      Truth truth[kRollTestPoints];
+      double ks[kRollTestPoints];
       for (int p = 0; p < kRollTestPoints; ++p) {
-        cos_alpha[p] = std::cos(Build::at(roll[0], ia, kRollTestLocal[p][0]) * kDegree);
         ks[p] = Build::at(roll[1], is, kRollTestLocal[p][1]);
-        truth[p] = expand(exact_at[p], cos_alpha[p], 1.0, ks[p], coupling, work_ratio);
+        truth[p] = Truth(expand(exact_at[p], cos_alpha[p], 1.0, ks[p], coupling, work_ratio));
       }
+      PointOrder<kRollTestPoints> order;
       auto error_of = [&](int stencil, double cutoff) {
-        PointError e;
-        double q[kStored];
-        for (int p = 0; p < kRollTestPoints && !(excess(e, tolerance) > cutoff); ++p) {
-          t.interpolate_roll(cell, kRollTestLocal[p], stencil, q);
-          e.include(
-              point_error(expand(q, cos_alpha[p], 1.0, ks[p], coupling, work_ratio), truth[p]));
-        }
-        return e;
+        return measure(order, tolerance, cutoff, [&](int p) {
+          double q[kStored];
+          if (finite)
+            interpolate_roll_test_point(t, cell, kRollTestLocal[p], stencil, q);
+          else
+            t.interpolate_roll(cell, kRollTestLocal[p], stencil, q);
+          return point_error(expand(q, cos_alpha[p], 1.0, ks[p], coupling, work_ratio), truth[p]);
+        });
       };
       PointError e;
-      const uint8_t code = choose_stencil(true, tolerance, error_of, &e);
+      const int hint = is > 0 ? t.roll_stencil_[ia * (rs - 1) + is - 1] : -1;
+      const uint8_t code = choose_stencil(true, tolerance, hint, error_of, &e);
       t.roll_stencil_[ia * (rs - 1) + is] = code;
       if (code == kFallback)
         ++tally.roll_fallback;
@@ -991,6 +1192,9 @@ std::string ImpactTable::cache_file_name(const CushionParams& params,
 bool ImpactTableAccess::save(const ImpactTable& t, const std::string& path) {
   if (t.empty()) return false;
   Writer out;
+  // The header and checksum take well under a kilobyte; one buffer for the whole file.
+  out.reserve(1024 + (t.nodes_.size() + t.roll_nodes_.size()) * sizeof(double) +
+              t.cell_stencil_.size() + t.roll_stencil_.size());
   out.put_bytes(kMagic, sizeof kMagic);
   out.put(kFormatVersion);
   out.put(kEndianMark);
