@@ -119,11 +119,11 @@ void run_lanes(const Constants& constants, const Settings& settings, BatchImpact
       for (int c = 0; c < kState; ++c) packed.c[c][0][l] = q[c];
     }
     (run == Kernel::tau ? Tau : Sigma)(constants, n, packed);
+    // Each lane's series read where the vector call wrote it.
+    const double* lanes = reinterpret_cast<const double*>(&packed);
     for (int b = 0; b < busy; ++b) {
       const int i = lane_of[b];
-      for (int c = 0; c < kState; ++c)
-        for (int j = 0; j <= n + 1; ++j) single.c[c][j] = packed.c[c][j][b];
-      flight[i]->finish_fast_step(single);
+      flight[i]->finish_fast_step(SeriesView<L>{lanes + b});
       waiting[i] = false;
     }
   }
