@@ -1045,9 +1045,14 @@ void Integrator::finish_fast_step(const Coefficients<double>& series) {
 }
 
 template <int L>
-void Integrator::finish_fast_step(SeriesView<L> series) {
+void Integrator::finish_fast_step(SeriesView<L> series, double h, const double* at_h) {
   out_->rhs_evaluations += set_.order + 1;
-  take_step(series, set_.order);
+  take_step(series, set_.order, h, at_h);
+}
+
+template <int L>
+double Integrator::fast_step_length(SeriesView<L> series) const {
+  return step_length(series, set_.order);
 }
 
 // The step's length from its last two coefficients: the largest h at which each is
@@ -1083,8 +1088,14 @@ double Integrator::step_size(SeriesView<L> s, int n) const {
 
 template <int L>
 void Integrator::take_step(SeriesView<L> s, int n) {
-  ++steps_;
-  const int deg = n + 1;
+  const double h = step_length(s, n);
+  double at_h[kState];
+  state_at(s, n + 1, h, at_h);
+  take_step(s, n, h, at_h);
+}
+
+template <int L>
+double Integrator::step_length(SeriesView<L> s, int n) const {
   double h = step_size(s, n);
   // Never much beyond the end of the phase: u_y falls at least at
   // worst_normal_deceleration per unit P (validate()), and W with it.
@@ -1097,6 +1108,14 @@ void Integrator::take_step(SeriesView<L> s, int n) {
                    : std::sqrt(2.0 * std::max(q_[kW] - work_target_, 0.0) / (g_.c * wnd)) +
                          std::max(uy, 0.0) / wnd;
   if (rho > 0.0) h = std::min(h, 2.0 * remaining / rho + 1e-300);
+  return h;
+}
+
+template <int L>
+void Integrator::take_step(SeriesView<L> s, int n, double h, const double* at_h) {
+  ++steps_;
+  const int deg = n + 1;
+  const double rho = s(kP, 1);
   if (!(h > 0.0) || !std::isfinite(h)) {
     fail("Taylor integrator found no usable step");
     return;
@@ -1114,10 +1133,8 @@ void Integrator::take_step(SeriesView<L> s, int n) {
   poly[0] = 0.0;  // (each use sets it first; this tells the compiler so)
   double compression_end = INFINITY, work_c = 0.0, impulse_c = 0.0;
   double rest[kTerms];  // work since the end of compression, about it
-  // The state at the step's full length: where no event function changes sign on it,
-  // that is where the step ends.
-  double at_h[kState];
-  state_at(s, deg, h, at_h);
+  // at_h: the state at the step's full length; where no event function changes sign on
+  // it, that is where the step ends.
   if (compressing_) {
     if ((at_h[kYC] - at_h[kYI]) * k_.inv_1ps <= 0.0) {
       for (int j = 0; j <= deg; ++j) poly[j] = (s(kYC, j) - s(kYI, j)) * k_.inv_1ps;
@@ -1316,9 +1333,12 @@ void Integrator::finish() {
 }
 
 // The batch's lanes (impact_taylor_lanes.cpp).
-template void Integrator::finish_fast_step<2>(SeriesView<2>);
-template void Integrator::finish_fast_step<4>(SeriesView<4>);
-template void Integrator::finish_fast_step<8>(SeriesView<8>);
+template void Integrator::finish_fast_step<2>(SeriesView<2>, double, const double*);
+template void Integrator::finish_fast_step<4>(SeriesView<4>, double, const double*);
+template void Integrator::finish_fast_step<8>(SeriesView<8>, double, const double*);
+template double Integrator::fast_step_length<2>(SeriesView<2>) const;
+template double Integrator::fast_step_length<4>(SeriesView<4>) const;
+template double Integrator::fast_step_length<8>(SeriesView<8>) const;
 
 }  // namespace taylor
 

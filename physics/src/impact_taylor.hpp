@@ -63,9 +63,13 @@ class Integrator {
   Kernel plan_step();
   const double* state() const { return q_; }
   void finish_fast_step(const Coefficients<double>& series);
-  // The same from a lane of a packed series (L = 2, 4, 8), read where it is.
+  // The same from a lane of a packed series (L = 2, 4, 8), read where it is, in two
+  // halves: the step's length h, then the step given the state at h (at_h), which the
+  // batch evaluates for all its lanes at once.
   template <int L>
-  void finish_fast_step(SeriesView<L> series);
+  double fast_step_length(SeriesView<L> series) const;
+  template <int L>
+  void finish_fast_step(SeriesView<L> series, double h, const double* at_h);
   void take_planned_step();
 
   // The whole impact; then finish().
@@ -104,6 +108,10 @@ class Integrator {
   void settle_modes(bool force_slip_i, bool force_slip_c);
   template <int L>
   void take_step(SeriesView<L> s, int order);
+  template <int L>
+  void take_step(SeriesView<L> s, int order, double h, const double* at_h);
+  template <int L>
+  double step_length(SeriesView<L> s, int order) const;
   template <int L>
   double step_size(SeriesView<L> s, int order) const;
   template <int L>
