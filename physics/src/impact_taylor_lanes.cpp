@@ -53,7 +53,8 @@ __attribute__((target("avx512f"))) void sigma_lanes_avx512(const Constants& k, i
 }
 
 // The lanes' states at their steps' lengths h (a lane each): polys_at's four Horner
-// chains in h^4 per series, lane by lane the same operations.
+// chains in h^4 per series, lane by lane the same operations. (The vectors pass by
+// reference: by value their ABI differs between builds for different instruction sets.)
 template <class Pack>
 [[gnu::always_inline]] inline void states_at(const Coefficients<Pack>& s, int degree,
                                              const Pack& hs, Pack out[kState]) {
