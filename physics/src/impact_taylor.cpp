@@ -87,13 +87,15 @@ constexpr double kMarginRounding = 1e-12;
 // the compression's impulse (about u_y / c): small against its rate of change.
 constexpr double kRegI = 0.3;
 
-// The polynomial c[0..degree] re-expanded about x0: out[j] is the coefficient of
+// The polynomial c[0..degree] (its coefficient j at c[j * J]) re-expanded about x0:
+// out[j] is the coefficient of
 // (h - x0)^j (repeated synthetic division: pass i sets out[k] += out[k + 1] x0 for k
 // from degree - 1 down to i). Passes run four at a time in one sweep, pass i + p a
 // step behind pass i + p - 1, each carrying its newest value in a register: four
 // independent chains, the same operations in the same order within each pass.
+template <int J>
 void shift_to(const double* c, int degree, double x0, double* out) {
-  for (int j = 0; j <= degree; ++j) out[j] = c[j];
+  for (int j = 0; j <= degree; ++j) out[j] = c[j * J];
   constexpr int kFused = 4;
   int i = 0;
   for (; i + kFused <= degree; i += kFused) {
@@ -115,8 +117,9 @@ void shift_to(const double* c, int degree, double x0, double* out) {
 }
 
 // The state at h from a step's series.
-void state_at(const Coefficients<double>& s, int degree, double h, double q[kState]) {
-  polys_at<kState>(s.c[0], kTerms, degree, h, q);
+template <int L>
+void state_at(SeriesView<L> s, int degree, double h, double q[kState]) {
+  polys_at<kState, L>(s.at, kTerms * L, degree, h, q);
 }
 
 double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
@@ -796,7 +799,7 @@ Integrator::Integrator(const ScaledImpact& impact, const Constants& constants,
   out_->cushion_slipping_at_start = !mode_[kI].stick;
   out_->table_slipping_at_start = !mode_[kC].stick;
   mode_changes_ = 0;
-  record_trace(nullptr, 0, 0.0);
+  record_trace<1>(nullptr, 0, 0.0);
 }
 
 // The centroid state of the series state q.
@@ -1021,7 +1024,7 @@ void Integrator::take_planned_step() {
     const int evaluations = general.run(set_.order);
     if (evaluations >= 0) {
       out_->rhs_evaluations += evaluations;
-      take_step(s, set_.order);
+      take_step(SeriesView<1>{s.c[0]}, set_.order);
       return;
     }
     // A slip that cannot leave zero at all (its stick fails only within rounding):
@@ -1038,20 +1041,35 @@ void Integrator::take_planned_step() {
 
 void Integrator::finish_fast_step(const Coefficients<double>& series) {
   out_->rhs_evaluations += set_.order + 1;
-  take_step(series, set_.order);
+  take_step(SeriesView<1>{series.c[0]}, set_.order);
+}
+
+template <int L>
+void Integrator::finish_fast_step(SeriesView<L> series, double h, const double* at_h) {
+  out_->rhs_evaluations += set_.order + 1;
+  take_step(series, set_.order, h, at_h);
+}
+
+template <int L>
+double Integrator::fast_step_length(SeriesView<L> series) const {
+  return step_length(series, set_.order);
 }
 
 // The step's length from its last two coefficients: the largest h at which each is
 // within the tolerance (never below the rounding of the state).
 // (Both orders side by side: worst = (order n, order n + 1).)
-double Integrator::step_size(const Coefficients<double>& s, int n) const {
+template <int L>
+double Integrator::step_size(SeriesView<L> s, int n) const {
   const double tol = set_.tolerance;
   Pair worst = {0.0, 0.0};
   for (int q = 0; q < kState; ++q) {
-    const double floor = 4.0 * kEpsilon * std::abs(s.c[q][0]);
+    const double floor = 4.0 * kEpsilon * std::abs(s(q, 0));
     const double scale = floor > tol ? tol / floor : 1.0;
     Pair last;
-    __builtin_memcpy(&last, &s.c[q][n], sizeof last);
+    if constexpr (L == 1)
+      __builtin_memcpy(&last, s.series(q) + n, sizeof last);
+    else
+      last = Pair{s(q, n), s(q, n + 1)};
     const Pair v = abs(last) * scale;
     worst = worst < v ? v : worst;  // std::max, lane by lane
   }
@@ -1068,13 +1086,20 @@ double Integrator::step_size(const Coefficients<double>& s, int n) const {
   return h;
 }
 
-void Integrator::take_step(const Coefficients<double>& s, int n) {
-  ++steps_;
-  const int deg = n + 1;
+template <int L>
+void Integrator::take_step(SeriesView<L> s, int n) {
+  const double h = step_length(s, n);
+  double at_h[kState];
+  state_at(s, n + 1, h, at_h);
+  take_step(s, n, h, at_h);
+}
+
+template <int L>
+double Integrator::step_length(SeriesView<L> s, int n) const {
   double h = step_size(s, n);
   // Never much beyond the end of the phase: u_y falls at least at
   // worst_normal_deceleration per unit P (validate()), and W with it.
-  const double rho = s.c[kP][1];
+  const double rho = s(kP, 1);
   const double wnd = worst_normal_deceleration(g_);
   const double uy = (q_[kYC] - q_[kYI]) * k_.inv_1ps;
   // (Restitution then lasts at most e sqrt(2) times as long, W falling like P^2.)
@@ -1083,6 +1108,14 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
                    : std::sqrt(2.0 * std::max(q_[kW] - work_target_, 0.0) / (g_.c * wnd)) +
                          std::max(uy, 0.0) / wnd;
   if (rho > 0.0) h = std::min(h, 2.0 * remaining / rho + 1e-300);
+  return h;
+}
+
+template <int L>
+void Integrator::take_step(SeriesView<L> s, int n, double h, const double* at_h) {
+  ++steps_;
+  const int deg = n + 1;
+  const double rho = s(kP, 1);
   if (!(h > 0.0) || !std::isfinite(h)) {
     fail("Taylor integrator found no usable step");
     return;
@@ -1100,17 +1133,15 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
   poly[0] = 0.0;  // (each use sets it first; this tells the compiler so)
   double compression_end = INFINITY, work_c = 0.0, impulse_c = 0.0;
   double rest[kTerms];  // work since the end of compression, about it
-  // The state at the step's full length: where no event function changes sign on it,
-  // that is where the step ends.
-  double at_h[kState];
-  state_at(s, deg, h, at_h);
+  // at_h: the state at the step's full length; where no event function changes sign on
+  // it, that is where the step ends.
   if (compressing_) {
     if ((at_h[kYC] - at_h[kYI]) * k_.inv_1ps <= 0.0) {
-      for (int j = 0; j <= deg; ++j) poly[j] = (s.c[kYC][j] - s.c[kYI][j]) * k_.inv_1ps;
+      for (int j = 0; j <= deg; ++j) poly[j] = (s(kYC, j) - s(kYI, j)) * k_.inv_1ps;
       compression_end = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
-      work_c = poly_at(s.c[kW], deg, compression_end);
-      impulse_c = poly_at(s.c[kP], deg, compression_end);
-      shift_to(s.c[kW], deg, compression_end, rest);
+      work_c = poly_at<L>(s.series(kW), deg, compression_end);
+      impulse_c = poly_at<L>(s.series(kP), deg, compression_end);
+      shift_to<L>(s.series(kW), deg, compression_end, rest);
       rest[0] = 0.0;
       for (int j = 0; j <= deg; ++j) poly[j] = rest[j];
       poly[0] += e_ * e_ * work_c;  // W_rest + e^2 W_c, zero at the end of the impact
@@ -1119,7 +1150,7 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
         when[kImpactEnd] = compression_end + root_in(poly, deg, left);
     }
   } else if (at_h[kW] - work_target_ <= 0.0) {
-    for (int j = 0; j <= deg; ++j) poly[j] = s.c[kW][j];
+    for (int j = 0; j <= deg; ++j) poly[j] = s(kW, j);
     poly[0] -= work_target_;
     when[kImpactEnd] = poly[0] > 0.0 ? root_in(poly, deg, h) : 0.0;
   }
@@ -1130,9 +1161,10 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
       // direction does, and it is zero there (else it only passes by).
       const double ex = planned_[i].ex, ey = planned_[i].ey;
       if (ex * at_h[ix] + ey * at_h[iy] <= 0.0) {
-        for (int j = 0; j <= deg; ++j) poly[j] = ex * s.c[ix][j] + ey * s.c[iy][j];
+        for (int j = 0; j <= deg; ++j) poly[j] = ex * s(ix, j) + ey * s(iy, j);
         const double at = root_in(poly, deg, h);
-        const double across = -ey * poly_at(s.c[ix], deg, at) + ex * poly_at(s.c[iy], deg, at);
+        const double across =
+            -ey * poly_at<L>(s.series(ix), deg, at) + ex * poly_at<L>(s.series(iy), deg, at);
         if (std::abs(across) <= set_.cross_slip) when[kSlipZeroI + i] = at;
       }
     } else if (!slipping(i)) {
@@ -1224,7 +1256,8 @@ void Integrator::take_step(const Coefficients<double>& s, int n) {
     fail("Taylor integrator reached its step bound before the impact ended");
 }
 
-void Integrator::record_trace(const Coefficients<double>* s, int n, double h) {
+template <int L>
+void Integrator::record_trace(const SeriesView<L>* s, int n, double h) {
   if (!trace_) return;
   auto sample = [&](const double* q) {
     const double work = compressing_ ? q[kW] : work_compression_ + q[kW];
@@ -1298,6 +1331,14 @@ void Integrator::finish() {
     out_->failure = "Taylor integrator stopped before the end of compression";
   }
 }
+
+// The batch's lanes (impact_taylor_lanes.cpp).
+template void Integrator::finish_fast_step<2>(SeriesView<2>, double, const double*);
+template void Integrator::finish_fast_step<4>(SeriesView<4>, double, const double*);
+template void Integrator::finish_fast_step<8>(SeriesView<8>, double, const double*);
+template double Integrator::fast_step_length<2>(SeriesView<2>) const;
+template double Integrator::fast_step_length<4>(SeriesView<4>) const;
+template double Integrator::fast_step_length<8>(SeriesView<8>) const;
 
 }  // namespace taylor
 

@@ -37,6 +37,16 @@ void fast_series(Kernel kernel, const Constants& constants, int order, Coefficie
 bool fast_series_on(KernelIsa isa, Kernel kernel, const Constants& constants, int order,
                     Coefficients<double>& s);
 
+// A step's series read in place: coefficient j of series q at at[(q * kTerms + j) * L].
+// L = 1 is a Coefficients<double>; L > 1 is one lane of a Coefficients of L-wide
+// vectors (the batch's vector kernels write L impacts' series side by side).
+template <int L>
+struct SeriesView {
+  const double* at;
+  double operator()(int q, int j) const { return at[(q * kTerms + j) * L]; }
+  const double* series(int q) const { return at + q * kTerms * L; }
+};
+
 // One impact, step by step. A step computes the state's Taylor series in the step's
 // variable, chooses its length from the series, and ends early on the first event
 // (a root of one of the step's polynomials).
@@ -53,6 +63,13 @@ class Integrator {
   Kernel plan_step();
   const double* state() const { return q_; }
   void finish_fast_step(const Coefficients<double>& series);
+  // The same from a lane of a packed series (L = 2, 4, 8), read where it is, in two
+  // halves: the step's length h, then the step given the state at h (at_h), which the
+  // batch evaluates for all its lanes at once.
+  template <int L>
+  double fast_step_length(SeriesView<L> series) const;
+  template <int L>
+  void finish_fast_step(SeriesView<L> series, double h, const double* at_h);
   void take_planned_step();
 
   // The whole impact; then finish().
@@ -89,9 +106,16 @@ class Integrator {
   double margin_of(int contact, const Friction& f) const;
   bool close_slip(int contact);
   void settle_modes(bool force_slip_i, bool force_slip_c);
-  void take_step(const Coefficients<double>& s, int order);
-  double step_size(const Coefficients<double>& s, int order) const;
-  void record_trace(const Coefficients<double>* s, int order, double h);
+  template <int L>
+  void take_step(SeriesView<L> s, int order);
+  template <int L>
+  void take_step(SeriesView<L> s, int order, double h, const double* at_h);
+  template <int L>
+  double step_length(SeriesView<L> s, int order) const;
+  template <int L>
+  double step_size(SeriesView<L> s, int order) const;
+  template <int L>
+  void record_trace(const SeriesView<L>* s, int order, double h);
   void fail(const char* why);
 
   const Constants& k_;

@@ -52,12 +52,50 @@ __attribute__((target("avx512f"))) void sigma_lanes_avx512(const Constants& k, i
   series_sigma<Pack8, QuadOf<Pack8>>(k, n, s);
 }
 
+// The lanes' states at their steps' lengths h (a lane each): polys_at's four Horner
+// chains in h^4 per series, lane by lane the same operations. (The vectors pass by
+// reference: by value their ABI differs between builds for different instruction sets.)
+template <class Pack>
+[[gnu::always_inline]] inline void states_at(const Coefficients<Pack>& s, int degree,
+                                             const Pack& hs, Pack out[kState]) {
+  const Pack h = hs, h2 = h * h, h4 = h2 * h2;
+  const int top = degree / 4;
+  const int rest = degree - 4 * top;
+  for (int q = 0; q < kState; ++q) {
+    const Pack* t = s.c[q] + 4 * top;
+    const Pack zero{};
+    Pack c0 = t[0], c1 = rest >= 1 ? t[1] : zero, c2 = rest >= 2 ? t[2] : zero,
+         c3 = rest >= 3 ? t[3] : zero;
+    for (int i = top - 1; i >= 0; --i) {
+      c0 = c0 * h4 + s.c[q][4 * i];
+      c1 = c1 * h4 + s.c[q][4 * i + 1];
+      c2 = c2 * h4 + s.c[q][4 * i + 2];
+      c3 = c3 * h4 + s.c[q][4 * i + 3];
+    }
+    out[q] = (c0 + h * c1) + h2 * (c2 + h * c3);
+  }
+}
+template <class Pack>
+using LaneStates = void (*)(const Coefficients<Pack>&, int, const Pack&, Pack*);
+void states_sse2(const Coefficients<Pack2>& s, int d, const Pack2& h, Pack2* out) {
+  states_at(s, d, h, out);
+}
+__attribute__((target("avx2"))) void states_avx2(const Coefficients<Pack4>& s, int d,
+                                                 const Pack4& h, Pack4* out) {
+  states_at(s, d, h, out);
+}
+__attribute__((target("avx512f"))) void states_avx512(const Coefficients<Pack8>& s, int d,
+                                                      const Pack8& h, Pack8* out) {
+  states_at(s, d, h, out);
+}
+
 // Twice as many impacts in flight as lanes: each is taken up to its next fast step
 // (general steps at once, an ended impact replaced by the batch's next), then the kind
 // with more impacts waiting fills a vector call, up to L of them; the others wait. With
 // 2L impacts in flight one kind always has L waiting until the batch runs dry, so the
 // vector calls are full (a lane holding a step of the other kind no longer idles).
-template <int L, class Pack, LaneKernel<Pack> Tau, LaneKernel<Pack> Sigma>
+template <int L, class Pack, LaneKernel<Pack> Tau, LaneKernel<Pack> Sigma,
+          LaneStates<Pack> States>
 void run_lanes(const Constants& constants, const Settings& settings, BatchImpacts& impacts) {
   constexpr int kFlight = 2 * L;
   std::optional<Integrator> flight[kFlight];
@@ -119,11 +157,19 @@ void run_lanes(const Constants& constants, const Settings& settings, BatchImpact
       for (int c = 0; c < kState; ++c) packed.c[c][0][l] = q[c];
     }
     (run == Kernel::tau ? Tau : Sigma)(constants, n, packed);
+    // Each lane's series read where the vector call wrote it; the states at the steps'
+    // lengths in one vector pass (idle lanes: any length).
+    const double* lanes = reinterpret_cast<const double*>(&packed);
+    Pack h{};
+    for (int b = 0; b < busy; ++b)
+      h[b] = flight[lane_of[b]]->fast_step_length(SeriesView<L>{lanes + b});
+    Pack at_h[kState];
+    States(packed, n + 1, h, at_h);
     for (int b = 0; b < busy; ++b) {
       const int i = lane_of[b];
-      for (int c = 0; c < kState; ++c)
-        for (int j = 0; j <= n + 1; ++j) single.c[c][j] = packed.c[c][j][b];
-      flight[i]->finish_fast_step(single);
+      double q[kState];
+      for (int c = 0; c < kState; ++c) q[c] = at_h[c][b];
+      flight[i]->finish_fast_step(SeriesView<L>{lanes + b}, h[b], q);
       waiting[i] = false;
     }
   }
@@ -161,15 +207,18 @@ void solve_taylor_batch(const Geometry& geometry, double tolerance, int max_step
       taylor::run_scalar(constants, settings, impacts);
       break;
     case 2:
-      taylor::run_lanes<2, taylor::Pack2, taylor::tau_lanes_sse2, taylor::sigma_lanes_sse2>(
+      taylor::run_lanes<2, taylor::Pack2, taylor::tau_lanes_sse2, taylor::sigma_lanes_sse2,
+                          taylor::states_sse2>(
           constants, settings, impacts);
       break;
     case 4:
-      taylor::run_lanes<4, taylor::Pack4, taylor::tau_lanes_avx2, taylor::sigma_lanes_avx2>(
+      taylor::run_lanes<4, taylor::Pack4, taylor::tau_lanes_avx2, taylor::sigma_lanes_avx2,
+                          taylor::states_avx2>(
           constants, settings, impacts);
       break;
     default:
-      taylor::run_lanes<8, taylor::Pack8, taylor::tau_lanes_avx512, taylor::sigma_lanes_avx512>(
+      taylor::run_lanes<8, taylor::Pack8, taylor::tau_lanes_avx512,
+                          taylor::sigma_lanes_avx512, taylor::states_avx512>(
           constants, settings, impacts);
       break;
   }

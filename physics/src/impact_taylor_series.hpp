@@ -292,13 +292,144 @@ template <class T, class Q>
   return a;
 }
 
+// Eight values handled together: two quads side by side. One impact's kernels keep two
+// sums over the same indices in one (the same IEEE operations as two quads).
+template <class Q>
+struct OctOf {
+  Q lo, hi;
+};
+template <class Q>
+[[gnu::always_inline]] inline OctOf<Q> operator+(const OctOf<Q>& a, const OctOf<Q>& b) {
+  return {a.lo + b.lo, a.hi + b.hi};
+}
+template <class Q>
+[[gnu::always_inline]] inline OctOf<Q> operator*(const OctOf<Q>& a, const OctOf<Q>& b) {
+  return {a.lo * b.lo, a.hi * b.hi};
+}
+template <class Q>
+[[gnu::always_inline]] inline double at(const OctOf<Q>& o, int i) {
+  return i < 4 ? at(o.lo, i) : at(o.hi, i - 4);
+}
+
+template <class O>
+[[gnu::always_inline]] inline O oct(double a, double b, double c, double d, double e, double f,
+                                    double g, double h) {
+  return {quad<decltype(O::lo)>(a, b, c, d), quad<decltype(O::lo)>(e, f, g, h)};
+}
+
+// The square-root recurrence's sums (square_head, square_tail) on w[j] = (u_j, r_j):
+// the elements 0-3 are the slips' sum, 4-7 the sizes'.
+template <class O>
+[[gnu::always_inline]] inline O square_head_oct(int m, const O* w) {
+  O h{};
+  for (int j = 2; 2 * j < m; ++j) h = h + w[j] * w[m - j];
+  return h;
+}
+template <class O>
+[[gnu::always_inline]] inline void square_tail_oct(int m, O h, const O* w, double* si,
+                                                   double* sc) {
+  if (m >= 3) h = h + w[1] * w[m - 1];
+  h = h + h;
+  if (m % 2 == 0) h = h + w[m / 2] * w[m / 2];
+  *si = (at(h, 0) + at(h, 1)) - at(h, 4);
+  *sc = (at(h, 2) + at(h, 3)) - at(h, 6);
+}
+
+// One impact's chain in pairs (T = double): the slips as X = (x_I, x_C) and Y = (y_I',
+// y_C), the sizes as (|u_I|, |u_C|), e_I, G and H as pairs (x, y); each pair is one SIMD
+// operation of two where the scalar chain has two, the same IEEE operations element by
+// element and in the same order. Beside it the sums in octs: (u, r) for the sizes and
+// the tau kernel's two product sums (ta tb, ga gb) in one.
+template <class T>
+constexpr bool kPaired = std::is_same_v<T, double>;
+
+template <class O, class Q>
+[[gnu::always_inline]] inline void series_tau_paired(const Constants& k, int n,
+                                                     Coefficients<double>& s,
+                                                     const Start<double, Q>& a) {
+  using P = Double2;
+  O w[kTerms];               // (x_I, y_I', x_C, y_C, |u_I|, |u_I|, |u_C|, |u_C|)
+  O ab[kTerms], cd[kTerms];  // (ta, ga) and (tb, gb) of series_tau
+  O head_w[kTerms], head_p[kTerms];
+  const Geometry& g = k.g;
+  const double ri0 = a.ri, rc0 = a.rc, inv_ri = a.inv_ri, exi0 = a.exi, eyi0 = a.eyi;
+  const double uy0 = a.uy, xi0 = at(a.u0, 0), yi0 = at(a.u0, 1), xc0 = at(a.u0, 2),
+               yc0 = at(a.u0, 3);
+  const P half_inv = {a.half_inv_ri, a.half_inv_rc};
+  const P ex = {exi0, a.ecx}, ey = {eyi0, a.ecy};
+  const P e_r = {exi0 * inv_ri, eyi0 * inv_ri};
+  const P e0 = {exi0, eyi0}, c0 = {xc0, yc0};
+  const P inv_ri2 = {inv_ri, inv_ri}, rc02 = {rc0, rc0}, eyi02 = {eyi0, eyi0};
+  const P k_hx = {k.xi_hx, k.xc_hx}, k_xc = {k.xi_xc, k.xc_xc}, k_gx = {k.xi_gx, k.xc_gx};
+  const P k_hy = {k.yi_hy, k.yc_hy}, k_yc = {k.yi_yc, k.yc_yc}, k_rc = {k.yi_rc, k.yc_rc},
+          k_gy = {k.yi_gy, k.yc_gy};
+  ab[0] = oct<O>(ri0, ri0, uy0, 0.0, rc0, rc0, eyi0, eyi0);
+  cd[0] = oct<O>(exi0, eyi0, rc0, 0.0, exi0, eyi0, xc0, yc0);
+  head_w[1] = head_p[1] = O{};
+  P x = {xi0, xc0}, y = {yi0, yc0};  // u_m
+  P sums_r{}, t01{}, g01{}, g23{};
+  double t2 = 0.0;
+  auto sums = [&](int o, const O& hw, const O& hp) [[gnu::always_inline]] {
+    double si, sc;
+    square_tail_oct<O>(o, hw, w, &si, &sc);
+    sums_r = P{si, sc};
+    const O t = tail_sum<O>(o, hp, ab, cd);
+    t01 = P{at(t, 0), at(t, 1)};
+    t2 = at(t, 2);
+    g01 = P{at(t, 4), at(t, 5)};
+    g23 = P{at(t, 6), at(t, 7)};
+  };
+  for (int m = 0;; ++m) {
+    P rr, e, gg, hh;  // (|u_I|, |u_C|)_m, e_I,m, G_m, H_m
+    double uym, q;
+    if (m == 0) {
+      rr = P{ri0, rc0};
+      e = e0;
+      uym = uy0;
+      gg = P{0.0, 0.0} + rc02 * e0;
+      hh = P{0.0, 0.0} + eyi02 * c0;
+      q = 0.0 + uy0 * rc0;
+    } else {
+      rr = sums_r * half_inv + (ex * x + ey * y);
+      const P xy_i = {x[0], y[0]}, xy_c = {x[1], y[1]};
+      e = (xy_i - t01) * inv_ri2 - rr[0] * e_r;
+      uym = (y[1] - y[0]) * k.inv_1ps;
+      gg = (g01 + rr[1] * e0) + rc02 * e;
+      hh = (g23 + e[1] * c0) + eyi02 * xy_c;
+      q = (t2 + uy0 * rr[1]) + uym * rc0;
+    }
+    const double inv = kInverse[m];
+    const P x1 = ((k_hx * hh[0] + k_xc * x[1]) + k_gx * gg[0]) * inv;
+    const P y1 = (((k_hy * hh[1] + k_yc * y[1]) + k_rc * rr[1]) + k_gy * gg[1]) * inv;
+    store(s, m + 1, x1[0], y1[0], x1[1], y1[1], (k.oz_gx * gg[0]) * inv, (g.c * q) * inv,
+          rr[1] * inv);
+    if (m == n) break;
+
+    // Index m into the sums (u_m with |u|_m), the sums of order m + 1 and the heads of
+    // order m + 2.
+    const double rim = rr[0], rcm = rr[1], exim = e[0], eyim = e[1];
+    w[m] = oct<O>(x[0], y[0], x[1], y[1], rim, rim, rcm, rcm);
+    if (m > 0) {
+      ab[m] = oct<O>(rim, rim, uym, 0.0, rcm, rcm, eyim, eyim);
+      cd[m] = oct<O>(exim, eyim, rcm, 0.0, exim, eyim, x[1], y[1]);
+    }
+    sums(m + 1, head_w[m + 1], head_p[m + 1]);
+    if (m + 2 <= n) {
+      head_w[m + 2] = square_head_oct<O>(m + 2, w);
+      head_p[m + 2] = head_sum<O>(m + 2, ab, cd);
+    }
+    x = x1;
+    y = y1;
+  }
+}
+
 // The Taylor coefficients, to order n + 1, of a step with both contacts slipping in
 // tau (dP/dtau = |u_C|). On entry s.c[.][0] hold the state, both slips nonzero; on
 // exit s.c[.][0..n+1] are filled. In tau the cloth friction times dP/dtau is
 // -mu_s p_C u_C, a polynomial; only the cushion's slip direction e_I needs the
 // quotient recurrence e_m = (u_m - sum_{j=1}^{m} |u|_j e_{m-j}) / |u|_0.
 template <class T, class Q>
-[[gnu::always_inline]] inline void series_tau(const Constants& k, int n, Coefficients<T>& s) {
+[[gnu::always_inline]] inline void series_tau_in_t(const Constants& k, int n, Coefficients<T>& s) {
   Q u[kTerms], r[kTerms];
   Q ta[kTerms], tb[kTerms];  // (|u_I|, |u_I|, u_y, -), (e_Ix, e_Iy, |u_C|, -)
   Q ga[kTerms], gb[kTerms];  // (|u_C|, |u_C|, e_Iy, e_Iy), (e_Ix, e_Iy, x_C, y_C)
@@ -396,6 +527,16 @@ template <class T, class Q>
     xc = xc1;
     yc = yc1;
   }
+}
+
+// One impact (T = double): the chain in pairs (series_tau_paired, the same coefficients
+// to the bit); a batch: the chain in T's.
+template <class T, class Q>
+[[gnu::always_inline]] inline void series_tau(const Constants& k, int n, Coefficients<T>& s) {
+  if constexpr (kPaired<T>)
+    series_tau_paired<OctOf<Q>, Q>(k, n, s, start<T, Q>(k, s));
+  else
+    series_tau_in_t<T, Q>(k, n, s);
 }
 
 // The same in sigma (dP/dsigma = |u_I| |u_C|), where both frictions times dP/dsigma

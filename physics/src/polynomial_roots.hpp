@@ -80,12 +80,13 @@ inline int roots_in(const double* c, int degree, double lo, double hi, double* o
 // Series polynomials (the Taylor methods' steps): degree below kMaxSeriesTerms.
 constexpr int kMaxSeriesTerms = 32;
 
-// K polynomials of one degree at h, the k-th at c + k * stride: out[k]. Each is four
+// K polynomials of one degree at h, the k-th at c + k * stride with its coefficient j
+// at c[k * stride + j * J] (J > 1: one lane of a packed series): out[k]. Each is four
 // interleaved Horner chains in h^4 (the coefficients of each residue of the power mod
 // 4), a quarter of Horner's chain of dependent multiply-adds, held as two SIMD pairs;
 // the K polynomials' chains run side by side. Every value is the same IEEE operations
 // as the scalar chains', lane by lane.
-template <int K>
+template <int K, int J = 1>
 inline void polys_at(const double* c, int stride, int degree, double h, double* out) {
   typedef double Pair __attribute__((vector_size(16)));
   const double h2 = h * h, h4 = h2 * h2;
@@ -94,15 +95,21 @@ inline void polys_at(const double* c, int stride, int degree, double h, double* 
   const int rest = degree - 4 * top;  // terms above 4 top
   Pair lo[K], hi[K];  // chains 0 and 1, 2 and 3
   for (int k = 0; k < K; ++k) {
-    const double* t = c + k * stride + 4 * top;
-    lo[k] = Pair{t[0], rest >= 1 ? t[1] : 0.0};
-    hi[k] = Pair{rest >= 2 ? t[2] : 0.0, rest >= 3 ? t[3] : 0.0};
+    const double* t = c + k * stride + 4 * top * J;
+    lo[k] = Pair{t[0], rest >= 1 ? t[J] : 0.0};
+    hi[k] = Pair{rest >= 2 ? t[2 * J] : 0.0, rest >= 3 ? t[3 * J] : 0.0};
   }
   for (int i = top - 1; i >= 0; --i) {
     for (int k = 0; k < K; ++k) {
+      const double* t = c + k * stride + 4 * i * J;
       Pair a, b;
-      __builtin_memcpy(&a, c + k * stride + 4 * i, sizeof a);
-      __builtin_memcpy(&b, c + k * stride + 4 * i + 2, sizeof b);
+      if constexpr (J == 1) {
+        __builtin_memcpy(&a, t, sizeof a);
+        __builtin_memcpy(&b, t + 2, sizeof b);
+      } else {
+        a = Pair{t[0], t[J]};
+        b = Pair{t[2 * J], t[3 * J]};
+      }
       lo[k] = lo[k] * h4s + a;
       hi[k] = hi[k] * h4s + b;
     }
@@ -110,10 +117,11 @@ inline void polys_at(const double* c, int stride, int degree, double h, double* 
   for (int k = 0; k < K; ++k) out[k] = (lo[k][0] + h * lo[k][1]) + h2 * (hi[k][0] + h * hi[k][1]);
 }
 
-// The polynomial c[0..degree] at h.
+// The polynomial c[0..degree] at h (its coefficient j at c[j * J]).
+template <int J = 1>
 inline double poly_at(const double* c, int degree, double h) {
   double v;
-  polys_at<1>(c, 0, degree, h, &v);
+  polys_at<1, J>(c, 0, degree, h, &v);
   return v;
 }
 
