@@ -63,7 +63,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <string_view>
 
 namespace cueplan::physics::detail {
 namespace taylor {
@@ -1299,12 +1301,24 @@ bool fast_series_on(KernelIsa isa, Kernel kernel, const Constants& constants, in
   return true;
 }
 
+KernelIsa widest_isa() {
+  // Immutable once set (a thread-safe static initialisation), like the CPU's features.
+  static const KernelIsa widest = [] {
+    KernelIsa isa = !__builtin_cpu_supports("avx2")        ? KernelIsa::sse2
+                    : !__builtin_cpu_supports("avx512vl") ? KernelIsa::avx2
+                                                          : KernelIsa::avx512;
+    if (const char* cap = std::getenv("CUEPLAN_SIMD")) {
+      const std::string_view c(cap);
+      if (c == "sse2") isa = KernelIsa::sse2;
+      if (c == "avx2" && isa == KernelIsa::avx512) isa = KernelIsa::avx2;
+    }
+    return isa;
+  }();
+  return widest;
+}
+
 void fast_series(Kernel kernel, const Constants& constants, int order, Coefficients<double>& s) {
-  const KernelIsa isa = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512vl")
-                            ? KernelIsa::avx512
-                        : __builtin_cpu_supports("avx2") ? KernelIsa::avx2
-                                                         : KernelIsa::sse2;
-  fast_series_on(isa, kernel, constants, order, s);
+  fast_series_on(widest_isa(), kernel, constants, order, s);
 }
 
 void Integrator::run() {

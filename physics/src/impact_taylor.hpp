@@ -30,8 +30,14 @@ enum class Kernel { tau, sigma, general };
 // with AVX-512's 32 registers (AVX-512VL) - bit for bit the same.
 enum class KernelIsa { sse2, avx2, avx512 };
 
+// The widest build the kernels may use: the CPU's, capped by the environment variable
+// CUEPLAN_SIMD (sse2, avx2 or avx512; read once per process) for tools that do not
+// decode every AVX instruction, such as valgrind 3.19 (bench/callgrind_ab.sh sets it).
+// Results do not depend on it: every build gives the same bits.
+KernelIsa widest_isa();
+
 // The series of a fast step of one impact (its state in s.c[.][0]) with the widest
-// build the CPU has.
+// build allowed (widest_isa).
 void fast_series(Kernel kernel, const Constants& constants, int order, Coefficients<double>& s);
 // The same with a given build; false (s untouched) where the CPU lacks it.
 bool fast_series_on(KernelIsa isa, Kernel kernel, const Constants& constants, int order,

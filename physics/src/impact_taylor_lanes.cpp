@@ -189,8 +189,9 @@ void run_scalar(const Constants& constants, const Settings& settings, BatchImpac
 }  // namespace
 
 int widest_lanes() {
-  if (__builtin_cpu_supports("avx512f")) return 8;
-  if (__builtin_cpu_supports("avx2")) return 4;
+  const KernelIsa isa = widest_isa();
+  if (isa == KernelIsa::avx512 && __builtin_cpu_supports("avx512f")) return 8;
+  if (isa != KernelIsa::sse2) return 4;
   return 2;
 }
 
