@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -55,6 +56,27 @@ TEST(Rebound, SpelledOutCommandPrintsSpeedAndAngleWithUnits) {
     EXPECT_NE(run.out.find(needle), std::string::npos) << "missing '" << needle << "' in\n"
                                                        << run.out;
   EXPECT_EQ(run.out.find("warning"), std::string::npos);
+}
+
+// CUEPLAN_SIMD caps the exact impact's kernels; a value the library does not know is
+// ignored, and the command says so on stderr without changing the result.
+TEST(Rebound, UnknownSimdCapIsReportedAndChangesNothing) {
+  const std::string args = "rebound --speed 1.3 --angle 70 --topspin-k 0.4 --sidespin-k -1";
+  const ProcessResult plain = cueplan(args, "plain");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(::setenv("CUEPLAN_SIMD", "sse2", 1), 0);
+  const ProcessResult capped = cueplan(args, "sse2");
+  ASSERT_EQ(::setenv("CUEPLAN_SIMD", "avx", 1), 0);
+  const ProcessResult typo = cueplan(args, "typo");
+  ::unsetenv("CUEPLAN_SIMD");
+  EXPECT_EQ(capped.exit_code, 0);
+  EXPECT_EQ(capped.err, "");
+  EXPECT_EQ(capped.out, plain.out);  // every kernel build gives the same bits
+  EXPECT_EQ(typo.exit_code, 0);
+  EXPECT_EQ(typo.out, plain.out);
+  EXPECT_EQ(typo.err,
+            "cueplan: warning: CUEPLAN_SIMD='avx' is not one of sse2, avx2, avx512; ignored "
+            "(the exact impact uses the widest instruction set the CPU has)\n");
 }
 
 TEST(Rebound, JsonEqualsTheLibraryResult) {
