@@ -9,6 +9,7 @@ const std::initializer_list<FieldName> kCushionFlags = {
     {{"mu_cushion"}, "--mu-cushion"},
     {{"mu_table"}, "--mu-table"},
     {{"restitution"}, "--restitution"},
+    {{"model"}, "--cushion-model"},
     {{"paper_steps"}, "--steps"},
     {{"tolerance"}, "--tolerance"},
     {{"table_fallback_tolerance"}, "--tolerance"},

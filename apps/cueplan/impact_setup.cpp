@@ -63,6 +63,11 @@ int prepare_impact_table(const char* command, const phys::Scene& scene,
                          phys::ImpactTable* table, phys::SimulationOptions* options,
                          std::ostream& err, bool* built) {
   const phys::CushionParams& params = scene.ball_and_cushion;
+  // The table is the Mathavan model's; a han_2005 scene's impacts are closed forms.
+  if (params.model != phys::CushionModel::mathavan_2010) {
+    if (built) *built = false;
+    return kExitOk;
+  }
   const std::string cache_dir = table_cache.empty() ? default_table_cache_dir() : table_cache;
   if (std::string why = ensure_directory(cache_dir); !why.empty()) {
     err << command << ": --table-cache: " << why << '\n';

@@ -55,14 +55,18 @@ void write_text(std::ostream& out, const phys::CushionParams& params, const Inci
   line("spin", "wx = " + number(w.x, "rad/s") + ", wy = " + number(w.y, "rad/s") +
                    ", wz = " + number(w.z, "rad/s") + "  (cushion frame)");
   line("status", phys::to_string(r.status));
+  line("model", phys::to_string(r.model));
   const bool interpolated = r.method_used == phys::ImpactMethod::table;
   // The work: right-hand-side calls, or for the Taylor method series orders (each
   // about one call's work).
   const char* work = r.method_used == phys::ImpactMethod::exact ? " series orders)"
                                                                 : " right-hand-side evaluations)";
-  line("method", interpolated ? std::string("table (interpolated)")
-                              : std::string(phys::to_string(r.method_used)) + " (" +
-                                    std::to_string(r.rhs_evaluations) + work);
+  if (r.method_used == phys::ImpactMethod::closed_form)
+    line("method", "closed_form (one impulse)");
+  else
+    line("method", interpolated ? std::string("table (interpolated)")
+                                : std::string(phys::to_string(r.method_used)) + " (" +
+                                      std::to_string(r.rhs_evaluations) + work);
   line("impulse", "compression " + number(r.impulse_compression, "N s") + ", total " +
                       number(r.impulse_total, "N s"));
   line("work",
@@ -102,6 +106,7 @@ nlohmann::ordered_json rebound_json(const phys::CushionParams& params, const Inc
   j["message"] = r.message;
   if (r.status == phys::ImpactStatus::rigid_limit_exceeded)
     j["warning"] = rigid_limit_warning(params, in);
+  j["cushion_model"] = phys::to_string(r.model);
   j["method"] = phys::to_string(r.method_used);
   j["rebound_speed"] = r.rebound_speed;
   j["rebound_angle_deg"] = r.rebound_angle_deg;
@@ -122,6 +127,7 @@ nlohmann::ordered_json rebound_json(const phys::CushionParams& params, const Inc
                 {"sidespin", in.sidespin},
                 {"topspin_k", in.topspin / spin_unit},
                 {"sidespin_k", in.sidespin / spin_unit},
+                {"cushion_model", phys::to_string(params.model)},
                 {"method", phys::to_string(options.method)},
                 {"steps", options.paper_steps},
                 {"tolerance", options.tolerance},
@@ -156,8 +162,8 @@ namespace {
 ReboundCommand::ReboundCommand(CLI::App& parent) {
   command_ = parent.add_subcommand(
       "rebound",
-      "Resolve a ball-cushion impact (Mathavan, Jackson & Parkin 2010) and print the "
-      "outgoing velocity and spin.");
+      "Resolve a ball-cushion impact (Mathavan, Jackson & Parkin 2010, or Han 2005 with "
+      "--cushion-model han_2005) and print the outgoing velocity and spin.");
   CLI::App& c = *command_;
   const phys::CushionParams snooker;
 
@@ -174,6 +180,14 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
   add_spin_flags(c, &args_.spin, ball, "V0", "");
 
   const char* method = "Method";
+  c.add_option("--cushion-model", args_.cushion_model,
+               "mathavan_2010 (friction at the cushion and the cloth over the impulse; the "
+               "methods below solve it) or han_2005 (Han's closed form: one impulse with "
+               "Newton's restitution --restitution and Coulomb friction --mu-cushion; "
+               "--method, --steps and --tolerance play no part). docs/cushion_models.md")
+      ->type_name("mathavan_2010|han_2005")
+      ->capture_default_str()
+      ->group(method);
   c.add_option("--method", args_.method,
                "exact (Taylor-series integrator with stick/slip events), extrapolation (a "
                "second exact method: Gragg-Bulirsch-Stoer extrapolation with the same events), "
@@ -290,6 +304,12 @@ std::string ReboundCommand::read_options(phys::ImpactOptions* options) const {
 
 std::string ReboundCommand::read_params(phys::CushionParams* params) const {
   *params = args_.params;
+  if (args_.cushion_model == "stronge_compliant")
+    return "--cushion-model stronge_compliant is not implemented; choose mathavan_2010 or "
+           "han_2005";
+  if (!phys::parse_cushion_model(args_.cushion_model, &params->model))
+    return "--cushion-model must be one of mathavan_2010, han_2005, got '" +
+           args_.cushion_model + "'";
   // The cushion height follows the radius unless given.
   if (!given("--cushion-height"))
     params->cushion_height = phys::params_for_radius(params->radius).cushion_height;
@@ -352,7 +372,9 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
 
   // The surrogate, built or loaded once for every impact of this run.
   std::optional<phys::ImpactTable> table;
-  if (options.method == phys::ImpactMethod::table) {
+  // (The table is the Mathavan model's: a han_2005 impact is a closed form.)
+  if (options.method == phys::ImpactMethod::table &&
+      params.model == phys::CushionModel::mathavan_2010) {
     const std::string cache_dir =
         args_.table_cache.empty() ? default_table_cache_dir() : args_.table_cache;
     if (std::string why = ensure_directory(cache_dir); !why.empty())

@@ -27,6 +27,7 @@ struct ReboundArgs {
   // --mass, --radius, --mu-cushion, --mu-table, --restitution, --cushion-height;
   // the cushion height becomes 7R/5 of the radius unless given.
   physics::CushionParams params;
+  std::string cushion_model = physics::to_string(physics::CushionParams{}.model);  // --cushion-model
   bool json = false;
   std::string batch_file;
   int threads = 0;          // batch threads; 0: one per core

@@ -52,6 +52,8 @@ std::string method_text(const phys::SimulationOptions& options, const phys::Scen
           100.0 * options.table->fallback_fraction());
     case phys::ImpactMethod::extrapolation:
       return "extrapolation (impact accuracy " + number(options.impact_accuracy) + " of the speed)";
+    case phys::ImpactMethod::closed_form:
+      return "closed_form (the han_2005 cushion model: one impulse per impact)";
     case phys::ImpactMethod::exact:
       break;
   }

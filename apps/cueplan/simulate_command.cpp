@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -330,6 +331,7 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
   }
   j["max_cushion_normal_speed"] = r.max_cushion_normal_speed;
   j["rigid_limit_exceeded"] = r.rigid_limit_exceeded;
+  j["cushion_model"] = phys::to_string(r.cushion_model);
   j["method"] = phys::to_string(phys::chosen_impact_method(scene, options));
   j["method_requested"] = phys::to_string(options.impact_method);
   j["impact_accuracy"] = options.impact_accuracy;
@@ -361,6 +363,41 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
                 {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"},
                 {"impact_accuracy", "relative to the speed"}};
   return j;
+}
+
+// The trace's CSV columns, units in their names.
+constexpr const char* kTraceHeader =
+    "t_s,ball,x_m,y_m,vx_mps,vy_mps,wx_radps,wy_radps,wz_radps,motion,event";
+
+void write_trace_csv(std::ostream& out, const phys::ShotTrace& trace,
+                     const phys::ShotResult& r) {
+  out << kTraceHeader << '\n';
+  std::string line;
+  for (const phys::BallSample& s : trace.samples) {
+    line.clear();
+    fmt::format_to(std::back_inserter(line), "{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},",
+                   s.time, r.balls[static_cast<size_t>(s.ball)].name, s.position.x, s.position.y,
+                   s.velocity.x, s.velocity.y);
+    fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{},{}\n", s.spin.x,
+                   s.spin.y, s.spin.z, phys::to_string(s.motion),
+                   s.event ? phys::to_string(*s.event) : "");
+    out << line;
+  }
+}
+
+nlohmann::ordered_json trace_json(const phys::ShotTrace& trace, const phys::ShotResult& r,
+                                  double interval) {
+  using nlohmann::ordered_json;
+  ordered_json rows = ordered_json::array();
+  for (const phys::BallSample& s : trace.samples)
+    rows.push_back({{"t", s.time},
+                    {"ball", r.balls[static_cast<size_t>(s.ball)].name},
+                    {"position", {s.position.x, s.position.y}},
+                    {"velocity", {s.velocity.x, s.velocity.y}},
+                    {"spin", {s.spin.x, s.spin.y, s.spin.z}},
+                    {"motion", phys::to_string(s.motion)},
+                    {"event", s.event ? ordered_json(phys::to_string(*s.event)) : ordered_json()}});
+  return {{"interval", interval}, {"end_time", trace.end_time}, {"samples", rows}};
 }
 
 namespace {
@@ -542,6 +579,17 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       ->capture_default_str()
       ->needs(samples)
       ->group(noise);
+  auto* trace =
+      c.add_option("--trace", args_.trace,
+                   "Every ball's state every DT seconds (> 0) and at each of its events, "
+                   "instead of the report: CSV with the header "
+                   "t_s,ball,x_m,y_m,vx_mps,vy_mps,wx_radps,wy_radps,wz_radps,motion,event "
+                   "(table frame; event empty between events); with --json, the report gains "
+                   "`trace` {interval, end_time, samples: [{t, ball, position, velocity, spin, "
+                   "motion, event}]}. At most " +
+                       std::to_string(phys::kMaxTraceSamples) + " rows.")
+          ->type_name("DT")
+          ->group(output);
   c.add_option("--threads", args_.threads,
                "Batch: threads to spread the rows over (0: one per core); the output is the "
                "same for any count. Also used to build a table.")
@@ -552,6 +600,7 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   batch->excludes(json);
   batch->excludes(svg);
   batch->excludes(samples);
+  batch->excludes(trace);
   for (const char* flag : {"--speed", "--aim", "--topspin-k", "--sidespin-k"})
     batch->excludes(c.get_option(flag));
 
@@ -592,6 +641,8 @@ std::string SimulateCommand::read_options(phys::SimulationOptions* options) cons
     return "--samples must not be negative, got " + std::to_string(args_.samples);
   if (!std::isfinite(args_.noise) || args_.noise < 0.0)
     return "--noise must be finite and not negative, got " + number(args_.noise);
+  if (given("--trace") && (!std::isfinite(args_.trace) || !(args_.trace > 0.0)))
+    return "--trace must be positive and finite (s between samples), got " + number(args_.trace);
   return {};
 }
 
@@ -679,10 +730,20 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
     success->success = planner::estimate_success(problem, shot, success->noise, args_.samples,
                                                  args_.seed, options);
   }
-  if (args_.json)
-    out << simulate_json(problem, shot, options, result, args_.svg_file, success).dump(2) << '\n';
-  else
+  std::optional<phys::ShotTrace> trace;
+  if (given("--trace")) {
+    trace = phys::trace_shot(result, problem.scene, args_.trace);
+    if (trace->error) return usage(trace->error->message("--trace"));
+  }
+  if (args_.json) {
+    nlohmann::ordered_json j = simulate_json(problem, shot, options, result, args_.svg_file, success);
+    if (trace) j["trace"] = trace_json(*trace, result, args_.trace);
+    out << j.dump(2) << '\n';
+  } else if (trace) {
+    write_trace_csv(out, *trace, result);
+  } else {
     write_text(out, problem, shot, options, result, args_.svg_file, success);
+  }
   const bool outcome = result.status == phys::ShotStatus::rest ||
                        result.status == phys::ShotStatus::pocketed ||
                        result.status == phys::ShotStatus::hit_obstacle;

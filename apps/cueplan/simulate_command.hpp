@@ -11,6 +11,7 @@
 #include <string>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/physics/trace.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "impact_setup.hpp"
@@ -47,6 +48,7 @@ struct SimulateArgs {
   int samples = 0;     // --samples: noisy strokes for the success estimate; 0: none
   double noise = 1.0;  // --noise: scale of planner::NoiseModel's deviations
   uint64_t seed = 1;   // --seed: of the noisy strokes
+  double trace = NAN;  // --trace: s between samples of every ball's state; NAN: no trace
 };
 
 class SimulateCommand {
@@ -97,6 +99,13 @@ struct SimulatedSuccess {
 // What `cueplan simulate --json` prints for one stroke (svg_file: the drawing written, or
 // empty; success: with --samples, reported as `success` {position, both, pot when the
 // problem has one} and `noise`).
+// Every ball's state every `interval` s and at each event (`cueplan simulate --trace`):
+// CSV with a header naming units, or (json) the rows as objects.
+void write_trace_csv(std::ostream& out, const physics::ShotTrace& trace,
+                            const physics::ShotResult& r);
+nlohmann::ordered_json trace_json(const physics::ShotTrace& trace, const physics::ShotResult& r,
+                                  double interval);
+
 nlohmann::ordered_json simulate_json(const problems::Problem& problem, const physics::Shot& shot,
                                      const physics::SimulationOptions& options,
                                      const physics::ShotResult& r, const std::string& svg_file,

@@ -60,6 +60,23 @@ Validation CushionParams::validate() const {
     return invalid({"rigid_speed_limit"}, "must be positive and finite (m/s)", rigid_speed_limit);
   const double s = sin_theta();
   const double c = cos_theta();
+  if (model == CushionModel::han_2005) {
+    // The worst friction (mu P_zE pressing the ball down along the tangent) must still
+    // turn the centre round: vy' / vy = 1 - (1 + e) c (c - mu s) < 0.
+    if (!((1.0 + restitution) * c * (c - mu_cushion * s) > 1.0)) {
+      ValidationError e = invalid({"restitution"},
+                                  "is too small together with {other} for cushion_model "
+                                  "han_2005: (1 + restitution) cos(theta) (cos(theta) - "
+                                  "mu_cushion sin(theta)) must exceed 1, or a ball may leave "
+                                  "the cushion still moving into it",
+                                  restitution);
+      e.other = FieldPath{"mu_cushion"};
+      return e;
+    }
+    return {};
+  }
+  if (model != CushionModel::mathavan_2010)
+    return invalid({"model"}, "must be mathavan_2010 or han_2005", static_cast<int>(model));
   // The table must keep pushing up: p_C = s - c fIy' > 0 for any |fIy'| <= mu_w.
   if (!(mu_cushion < s / c))
     return invalid({"mu_cushion"},
@@ -111,8 +128,27 @@ const char* to_string(ImpactMethod method) {
     case ImpactMethod::extrapolation: return "extrapolation";
     case ImpactMethod::paper: return "paper";
     case ImpactMethod::table: return "table";
+    case ImpactMethod::closed_form: return "closed_form";
   }
   return "unknown";
+}
+
+const char* to_string(CushionModel model) {
+  switch (model) {
+    case CushionModel::mathavan_2010: return "mathavan_2010";
+    case CushionModel::han_2005: return "han_2005";
+  }
+  return "unknown";
+}
+
+bool parse_cushion_model(const std::string& name, CushionModel* model) {
+  for (CushionModel m : {CushionModel::mathavan_2010, CushionModel::han_2005}) {
+    if (name == to_string(m)) {
+      *model = m;
+      return true;
+    }
+  }
+  return false;
 }
 
 const char* to_string(ImpactStatus status) {
@@ -218,8 +254,9 @@ ImpactResult invalid_result(ValidationError error) {
 
 Validation ImpactOptions::validate() const {
   if (method != ImpactMethod::exact && method != ImpactMethod::extrapolation &&
-      method != ImpactMethod::paper && method != ImpactMethod::table)
-    return invalid({"method"}, "must be exact, extrapolation, paper or table",
+      method != ImpactMethod::paper && method != ImpactMethod::table &&
+      method != ImpactMethod::closed_form)
+    return invalid({"method"}, "must be exact, extrapolation, paper, table or closed_form",
                    static_cast<int>(method));
   if (paper_steps < 1) return invalid({"paper_steps"}, "must be at least 1", paper_steps);
   if (!tolerance_in_range(tolerance))
@@ -239,6 +276,12 @@ Validation ImpactOptions::validate() const {
 Validation detail::check_impact_inputs(const CushionParams& params, const ImpactOptions& options) {
   if (Validation e = params.validate()) return e;
   if (Validation e = options.validate()) return e;
+  // The methods are Mathavan's; the han_2005 model is one closed form whatever they say.
+  if (params.model == CushionModel::han_2005) return {};
+  if (options.method == ImpactMethod::closed_form)
+    return invalid({"method"},
+                   "closed_form resolves the han_2005 cushion model only; mathavan_2010 takes "
+                   "exact, extrapolation, paper or table");
   if (options.method == ImpactMethod::table && options.table == nullptr)
     return invalid({"table"}, "must be a built impact table for method table");
   return {};
@@ -273,6 +316,7 @@ double speed_scale(const BallState& incoming) {
 std::optional<ImpactResult> prepare(const CushionParams& params, const BallState& incoming,
                                     const ImpactOptions& options, Prepared* prep) {
   if (Validation e = validate_state(incoming)) return invalid_result(std::move(*e));
+  if (params.model == CushionModel::han_2005) return detail::resolve_han_2005(params, incoming);
   if (options.method == ImpactMethod::table) {
     ImpactResult r;
     if (options.table->resolve(params, incoming, &r)) return r;

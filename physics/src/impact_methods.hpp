@@ -72,6 +72,10 @@ Validation check_impact_inputs(const CushionParams& params, const ImpactOptions&
 ImpactResult resolve_checked_impact(const CushionParams& params, const BallState& incoming,
                                     const ImpactOptions& options);
 
+// The han_2005 model (impact_han.cpp) for checked parameters and a checked incoming state
+// (velocity.y > 0): one closed-form impulse, flagged above the rigid-speed limit.
+ImpactResult resolve_han_2005(const CushionParams& params, const BallState& incoming);
+
 // Fills a trace sample (scaled) from a state and the work so far.
 TraceSample scaled_sample(const Geometry& g, const Scaled& q, double impulse, double work);
 

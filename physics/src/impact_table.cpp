@@ -992,7 +992,11 @@ void ImpactTableAccess::measured_error(Build& b) {
 }
 
 ImpactTable ImpactTable::build(const CushionParams& params, const ImpactTableOptions& options) {
-  return ImpactTableAccess::build(params, options);
+  // A table of the Mathavan model, whatever model the parameters name (covers() then
+  // refuses other models' parameters).
+  CushionParams mathavan = params;
+  mathavan.model = CushionModel::mathavan_2010;
+  return ImpactTableAccess::build(mathavan, options);
 }
 
 double ImpactTable::fallback_fraction() const {
@@ -1006,7 +1010,7 @@ double ImpactTable::roll_fallback_fraction() const {
 }
 
 bool ImpactTable::covers(const CushionParams& params) const {
-  return !empty() && close(params.sin_theta(), sin_theta_) &&
+  return !empty() && params.model == CushionModel::mathavan_2010 && close(params.sin_theta(), sin_theta_) &&
          close(params.mu_cushion, params_.mu_cushion) && close(params.mu_table, params_.mu_table) &&
          close(params.restitution, params_.restitution);
 }

@@ -777,6 +777,7 @@ ShotResult simulate(const CompiledScene& compiled, Vec2 cue_ball, const Shot& sh
   if (Validation e = check_stroke(compiled.scene(), cue_ball, shot, options))
     return invalid_shot(std::move(*e));
   ShotResult result;
+  result.cushion_model = compiled.scene().ball_and_cushion.model;
   ShotRun run(compiled, options, &result);
   run.strike(cue_ball, shot);
   run.run();

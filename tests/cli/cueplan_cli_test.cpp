@@ -104,6 +104,30 @@ TEST(Rebound, JsonEqualsTheLibraryResult) {
   EXPECT_EQ(j.at("input").at("angle_deg"), 45.0);
 }
 
+TEST(Rebound, HanModelJsonEqualsTheLibraryResult) {
+  const ProcessResult run = cueplan(
+      "rebound --speed 1.4 --angle 60 --topspin-k 0.5 --sidespin-k -0.8 --cushion-model han_2005 "
+      "--method table --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");  // no table is built for the closed form
+  const json j = json::parse(run.out);
+  phys::CushionParams params;
+  params.model = phys::CushionModel::han_2005;
+  const phys::ImpactResult expected = phys::resolve_impact(
+      params, phys::incoming_state_k(1.4, 60.0, 0.5, -0.8, params.radius));
+  ASSERT_EQ(expected.status, phys::ImpactStatus::ok);
+  EXPECT_EQ(j.at("cushion_model"), "han_2005");
+  EXPECT_EQ(j.at("method"), "closed_form");
+  EXPECT_EQ(j.at("input").at("cushion_model"), "han_2005");
+  EXPECT_NEAR(j["velocity"][0].get<double>(), expected.outgoing.velocity.x, 1e-12);
+  EXPECT_NEAR(j["velocity"][1].get<double>(), expected.outgoing.velocity.y, 1e-12);
+  EXPECT_NEAR(j["spin"][2].get<double>(), expected.outgoing.spin.z, 1e-9);
+  // The default model is still Mathavan's.
+  const ProcessResult mathavan = cueplan("rebound --speed 1.4 --angle 60 --json");
+  ASSERT_EQ(mathavan.exit_code, 0) << mathavan.err;
+  EXPECT_EQ(json::parse(mathavan.out).at("cushion_model"), "mathavan_2010");
+}
+
 // Every flag reaches the library: paper method, rad/s spins, a pool ball with its own
 // mass, radius (cushion height following at 7R/5) and friction.
 TEST(Rebound, FlagsReachTheLibrary) {
@@ -214,6 +238,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"CushionBelowEquator", "rebound --speed 1 --angle 45 --cushion-height 0.02",
                  "--cushion-height"},
         BadInput{"UnknownMethod", "rebound --speed 1 --angle 45 --method magic", "--method"},
+        BadInput{"UnknownCushionModel", "rebound --speed 1 --angle 45 --cushion-model han",
+                 "--cushion-model"},
+        BadInput{"StrongeCushionModel",
+                 "rebound --speed 1 --angle 45 --cushion-model stronge_compliant",
+                 "--cushion-model stronge_compliant is not implemented"},
+        BadInput{"HanRestitutionTooLow",
+                 "rebound --speed 1 --angle 45 --cushion-model han_2005 --restitution 0.1",
+                 "--restitution"},
         BadInput{"NegativeSteps", "rebound --speed 1 --angle 45 --method paper --steps -5",
                  "--steps"},
         BadInput{"LooseTolerance", "rebound --speed 1 --angle 45 --tolerance 0.5", "--tolerance"},

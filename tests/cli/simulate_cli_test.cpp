@@ -209,6 +209,108 @@ TEST(SimulateBalls, JsonDescribesEveryBallAsTheLibraryDoes) {
   EXPECT_EQ(j.at("status"), "rest");
 }
 
+// ---------------------------------------------------------------------------
+// --trace
+
+constexpr const char* kTraceHeader =
+    "t_s,ball,x_m,y_m,vx_mps,vy_mps,wx_radps,wy_radps,wz_radps,motion,event";
+
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> cells(1);
+  for (char ch : line) {
+    if (ch == ',')
+      cells.emplace_back();
+    else
+      cells.back() += ch;
+  }
+  return cells;
+}
+
+TEST(SimulateTrace, CsvHasEveryBallOnTheGridAndAtItsEvents) {
+  const fs::path file = scratch() / "pot_trace.yaml";
+  write_text(file, kPotProblem);
+  const ProcessResult run =
+      cueplan("simulate '" + file.string() + "' " + kPotShot + " --trace 0.05", "pot_trace");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::vector<std::string> lines = lines_of(run.out);
+  ASSERT_GT(lines.size(), 2u);
+  EXPECT_EQ(lines[0], kTraceHeader);
+  const prob::LoadResult loaded = prob::load_problem(file.string());
+  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const phys::ShotResult expected = library_shot(*loaded.problem, {2.0, 196.63, 1.0, 0.0});
+  // Each ball's event rows are its events, in order, with their states.
+  std::vector<size_t> next(expected.balls.size(), 0);
+  size_t grid_rows = 0;
+  double last_t = 0.0;
+  for (size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> cells = split_csv(lines[i]);
+    ASSERT_EQ(cells.size(), 11u) << lines[i];
+    const double t = std::stod(cells[0]);
+    EXPECT_GE(t, last_t);
+    last_t = t;
+    size_t k = 0;
+    while (k < expected.balls.size() && expected.balls[k].name != cells[1]) ++k;
+    ASSERT_LT(k, expected.balls.size()) << lines[i];
+    if (cells[10].empty()) {
+      ++grid_rows;
+      EXPECT_NEAR(t / 0.05, std::round(t / 0.05), 1e-9) << lines[i];
+      continue;
+    }
+    ASSERT_LT(next[k], expected.balls[k].events.size()) << lines[i];
+    const phys::ShotEvent& e = expected.balls[k].events[next[k]++];
+    EXPECT_EQ(cells[10], phys::to_string(e.type));
+    EXPECT_NEAR(t, e.time, 1e-12);
+    EXPECT_NEAR(std::stod(cells[2]), e.position.x, 1e-9);
+    EXPECT_NEAR(std::stod(cells[3]), e.position.y, 1e-9);
+    EXPECT_NEAR(std::stod(cells[4]), e.velocity.x, 1e-9);
+    EXPECT_NEAR(std::stod(cells[5]), e.velocity.y, 1e-9);
+    EXPECT_NEAR(std::stod(cells[8]), e.spin.z, 1e-9);
+  }
+  for (size_t k = 0; k < expected.balls.size(); ++k)
+    EXPECT_EQ(next[k], expected.balls[k].events.size()) << expected.balls[k].name;
+  EXPECT_GT(grid_rows, 3 * static_cast<size_t>(expected.duration / 0.05) / 2);
+}
+
+TEST(SimulateTrace, JsonReportCarriesTheTrace) {
+  const ProcessResult run = cueplan(one_rail_command("--json --trace 0.1"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  EXPECT_EQ(j.at("status"), "rest");  // the report is still there
+  EXPECT_EQ(j.at("cushion_model"), "mathavan_2010");
+  const json& trace = j.at("trace");
+  EXPECT_DOUBLE_EQ(trace.at("interval").get<double>(), 0.1);
+  const phys::ShotResult expected = library_shot(shipped("one_rail_position"), kOneRail);
+  size_t events = 0;
+  for (const json& row : trace.at("samples")) {
+    if (row.at("event").is_null()) continue;
+    const phys::ShotEvent& e = expected.events.at(events++);
+    EXPECT_EQ(row.at("event"), phys::to_string(e.type));
+    EXPECT_NEAR(row.at("position")[0].get<double>(), e.position.x, 1e-9);
+    EXPECT_NEAR(row.at("velocity")[1].get<double>(), e.velocity.y, 1e-9);
+  }
+  EXPECT_EQ(events, expected.events.size());
+  EXPECT_EQ(trace.at("samples").size(),
+            expected.events.size() + static_cast<size_t>(std::floor(expected.duration / 0.1)) + 1 -
+                1 /* the strike replaces the grid row at t = 0 */);
+}
+
+TEST(SimulateCushionModel, HanSceneIsSimulatedAndNamed) {
+  const fs::path file = scratch() / "han.yaml";
+  write_text(file, "physics: {cushion_model: han_2005}\ncue_ball: [0.8, 0.5]\ntarget: [2.6, 1.2]\n");
+  const ProcessResult run =
+      cueplan("simulate '" + file.string() + "' --speed 1.5 --aim 30 --json --method table", "han");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err, "");  // no impact table is built for a closed-form model
+  const json j = json::parse(run.out);
+  EXPECT_EQ(j.at("cushion_model"), "han_2005");
+  EXPECT_EQ(j.at("method"), "closed_form");
+  const prob::LoadResult loaded = prob::load_problem(file.string());
+  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const phys::ShotResult expected = library_shot(*loaded.problem, {1.5, 30.0, 0.0, 0.0});
+  EXPECT_DOUBLE_EQ(j.at("final_position")[0].get<double>(), expected.final_position.x);
+  EXPECT_DOUBLE_EQ(j.at("final_position")[1].get<double>(), expected.final_position.y);
+}
+
 TEST(SimulateBalls, TextAndBatchNameTheFirstContactAndThePots) {
   const fs::path file = scratch() / "pot.yaml";
   write_text(file, kPotProblem);
@@ -538,7 +640,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"NegativeNoise", "{one_rail} --speed 1 --aim 0 --samples 5 --noise -1",
                  "--noise"},
         BadInput{"NoiseWithoutSamples", "{one_rail} --speed 1 --aim 0 --noise 2", "--noise"},
-        BadInput{"BatchWithSamples", "{one_rail} --batch x.csv --samples 5", "--batch"}),
+        BadInput{"BatchWithSamples", "{one_rail} --batch x.csv --samples 5", "--batch"},
+        BadInput{"ZeroTrace", "{one_rail} --speed 1 --aim 0 --trace 0", "--trace"},
+        BadInput{"NegativeTrace", "{one_rail} --speed 1 --aim 0 --trace -0.01", "--trace"},
+        BadInput{"NanTrace", "{one_rail} --speed 1 --aim 0 --trace nan", "--trace"},
+        BadInput{"InfiniteTrace", "{one_rail} --speed 1 --aim 0 --trace inf", "--trace"},
+        BadInput{"TraceOfTooManyRows", "{one_rail} --speed 1 --aim 0 --trace 1e-9",
+                 "--trace gives"},
+        BadInput{"BatchWithTrace", "{one_rail} --batch x.csv --trace 0.1", "--batch"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return param.param.name; });
 
 TEST(SimulateBadInputMessage, SpeedMessageIsTheDocumentedOne) {

@@ -316,6 +316,22 @@ TEST(ProblemValues, ExplicitNumberTagsAndExponentsAreNumbers) {
   EXPECT_DOUBLE_EQ(p.target.y, 0.5);
 }
 
+TEST(ProblemValues, CushionModelReachesTheScene) {
+  EXPECT_EQ(parse_ok("cue_ball: [1, 1]\ntarget: [2, 1]\n").scene.ball_and_cushion.model,
+            physics::CushionModel::mathavan_2010);
+  const Problem p = parse_ok(
+      "physics: {cushion_model: han_2005, mu_cushion: 0.3, restitution: 0.85}\n"
+      "cue_ball: [1, 1]\ntarget: [2, 1]\n");
+  EXPECT_EQ(p.scene.ball_and_cushion.model, physics::CushionModel::han_2005);
+  // Mathavan's mu_w < tan(theta) (0.436 here) does not bind Han's model: 0.5 loads.
+  const Problem high = parse_ok(
+      "physics: {cushion_model: han_2005, mu_cushion: 0.5}\ncue_ball: [1, 1]\ntarget: [2, 1]\n");
+  EXPECT_DOUBLE_EQ(high.scene.ball_and_cushion.mu_cushion, 0.5);
+  EXPECT_EQ(parse_ok("physics: {cushion_model: mathavan_2010}\ncue_ball: [1, 1]\ntarget: [2, 1]\n")
+                .scene.ball_and_cushion.model,
+            physics::CushionModel::mathavan_2010);
+}
+
 TEST(ProblemValues, ObjectBallsPotAndBallPhysicsReachTheirFields) {
   const Problem p = parse_ok(
       "physics: {mu_ball: 0.06, ball_restitution: 0.93, ball_model: frictional_inelastic,\n"
@@ -624,6 +640,16 @@ const BadInput kBadInputs[] = {
      1, "physics.ball_model",
      "must be one of mathavan_2014, frictional_inelastic, got \"mathavan_2041\" (did you mean "
      "mathavan_2014?)"},
+    {"StrongeCushionNotImplemented",
+     "physics: {cushion_model: stronge_compliant}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "physics.cushion_model",
+     "stronge_compliant is not implemented; choose mathavan_2010 or han_2005"},
+    {"UnknownCushionModel", "physics:\n  cushion_model: han_2006\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     2, "physics.cushion_model",
+     "must be one of mathavan_2010, han_2005, got \"han_2006\" (did you mean han_2005?)"},
+    {"HanRestitutionTooLow",
+     "physics:\n  cushion_model: han_2005\n  restitution: 0.1\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     3, "physics.restitution", "is too small together with physics.mu_cushion for cushion_model han_2005"},
     {"UnknownBallFriction", "physics:\n  ball_friction: speed\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
      2, "physics.ball_friction", "must be one of constant, speed_dependent"},
     {"BallRestitutionAboveOne",

@@ -2,6 +2,8 @@
 // shared/PHYSICS.md: a ball with any spin meets a rigid cushion whose nose touches
 // it above its equator; it slips (or sticks) at the cushion and at the cloth while
 // the cushion's normal impulse P_I grows, and leaves with a new velocity and spin.
+// A second model, Han (2005), resolves the same contact in closed form with one
+// impulse (docs/cushion_models.md); CushionParams::model chooses between them.
 //
 // Everything here is a pure function of its arguments: no globals, no hidden state,
 // safe to call from many threads at once.
@@ -20,6 +22,16 @@ namespace cueplan::physics {
 
 class ImpactTable;
 
+// The model that resolves a ball-cushion contact (docs/cushion_models.md).
+enum class CushionModel {
+  mathavan_2010,  // friction at the cushion and the cloth over the normal impulse (default)
+  han_2005,       // one impulse at the cushion contact, closed form, no cloth friction
+};
+
+const char* to_string(CushionModel model);
+// Parses "mathavan_2010" or "han_2005"; returns false (leaving *model alone) otherwise.
+bool parse_cushion_model(const std::string& name, CushionModel* model);
+
 // Fixed parameters of the impact. SI units; defaults are the paper's snooker values.
 struct CushionParams {
   double mass = 0.1406;             // kg
@@ -29,12 +41,20 @@ struct CushionParams {
   double mu_table = 0.212;          // ball-cloth sliding friction mu_s
   double restitution = 0.98;        // energetic coefficient of restitution e_e, (0, 1]
   double rigid_speed_limit = 2.5;   // m/s; normal speeds above it are flagged
+  // Which model resolves the impact. han_2005 uses mass, radius, cushion_height,
+  // mu_cushion (Han's mu) and restitution (Han's e, Newton's restitution of the normal
+  // velocity at the contact); mu_table plays no part in its impact.
+  CushionModel model = CushionModel::mathavan_2010;
 
   // Elevation of the contact normal: sin(theta) = (h - R) / R.
   double sin_theta() const { return (cushion_height - radius) / radius; }
   double cos_theta() const;
 
   // Empty when usable; otherwise the first broken rule, fields named as the members here.
+  // The rules on mu_cushion and mu_table that keep Mathavan's integration well posed
+  // apply to mathavan_2010; han_2005 instead needs
+  // (1 + restitution) cos(theta) (cos(theta) - mu_cushion sin(theta)) > 1, or a ball
+  // could leave its impulse still moving into the cushion.
   Validation validate() const;
 };
 
@@ -64,6 +84,8 @@ enum class ImpactMethod {
   extrapolation,  // Gragg-Bulirsch-Stoer extrapolation with events: a second exact method
   paper,          // the paper's fixed-step scheme in P_I (section 3.4)
   table,          // precomputed surrogate over (alpha, k_T, k_S); see impact_table.hpp
+  closed_form,    // not a choice: what resolves every impact of the han_2005 model. The
+                  // methods above are Mathavan's; with han_2005 they are ignored.
 };
 
 enum class ImpactStatus {
@@ -75,7 +97,8 @@ enum class ImpactStatus {
 
 const char* to_string(ImpactMethod method);
 const char* to_string(ImpactStatus status);
-// Parses "exact", "extrapolation", "paper" or "table"; returns false for anything else.
+// Parses "exact", "extrapolation", "paper" or "table"; returns false for anything else
+// (closed_form too: it follows from the model, it is not asked for).
 bool parse_method(const std::string& name, ImpactMethod* method);
 
 // True when a result's outgoing state can be used (ok or only flagged).
@@ -139,11 +162,14 @@ struct ImpactResult {
   // invalid_input: the broken rule; fields named as CushionParams' members, the
   // incoming state's ({"velocity", "y"}, {"spin", "z"}) and ImpactOptions' members.
   std::optional<ValidationError> error;
-  ImpactMethod method_used = ImpactMethod::exact;
+  CushionModel model = CushionModel::mathavan_2010;  // the model that resolved it
+  ImpactMethod method_used = ImpactMethod::exact;    // closed_form for han_2005
 
   BallState outgoing;              // cushion frame, same units as the input
   double rebound_speed = 0.0;      // m/s, |(vx, vy)| after the impact
   double rebound_angle_deg = 0.0;  // from +X like alpha: mirror reflection gives beta = alpha
+  // han_2005: the normal impulse along the contact normal, P_zE / (1 + e) and P_zE;
+  // the work terms are Mathavan's only (0).
   double impulse_compression = 0.0;  // N s, P_I when the normal approach stops (eq. 16c)
   double impulse_total = 0.0;        // N s, P_I when W = (1 - e^2) W_c (eq. 16b)
   double work_compression = 0.0;     // J, W_c
@@ -159,8 +185,10 @@ struct ImpactResult {
   int rhs_evaluations = 0;
 };
 
-// Resolves one impact. Never throws for bad numbers: invalid input comes back as
-// status invalid_input with a message naming the field.
+// Resolves one impact with params.model. Never throws for bad numbers: invalid input
+// comes back as status invalid_input with a message naming the field. With han_2005 the
+// options' method, table and trace are ignored (the impact is one closed-form impulse;
+// no slip history is recorded) and method_used is closed_form.
 ImpactResult resolve_impact(const CushionParams& params, const BallState& incoming,
                             const ImpactOptions& options = {});
 

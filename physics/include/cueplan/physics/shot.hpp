@@ -205,8 +205,10 @@ enum class ShotStatus {
 const char* to_string(ShotStatus status);
 
 struct SimulationOptions {
-  // Impact method for cushion contacts. With a table, the table answers where its
-  // measured error meets `impact_accuracy`, and the exact method elsewhere. Ball-ball
+  // Impact method for cushion contacts of the mathavan_2010 model (the scene's
+  // ball_and_cushion.model). With a table, the table answers where its measured error
+  // meets `impact_accuracy`, and the exact method elsewhere. A han_2005 scene's impacts
+  // are one closed form each: this, the accuracy and the table play no part in them. Ball-ball
   // contacts of the mathavan_2014 model are always resolved by its exact method, at a
   // tolerance that meets `impact_accuracy` as well.
   ImpactMethod impact_method = ImpactMethod::exact;
@@ -220,7 +222,8 @@ struct SimulationOptions {
   bool record_path = true;              // fill the path of ShotResult and of each ball
 };
 
-// The impact method simulate() uses for cushion contacts with these options: the
+// The impact method simulate() uses for cushion contacts with these options: closed_form
+// when the scene's cushion model is han_2005 (whatever the options ask for); otherwise the
 // table where its measured error meets options.impact_accuracy, paper or
 // extrapolation when asked for, else exact (at a tolerance that meets the accuracy).
 ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options);
@@ -253,6 +256,7 @@ struct ShotResult {
                                           // model is flagged
   bool rigid_limit_exceeded = false;      // the cue ball's cushions
   ImpactMethod impact_method = ImpactMethod::exact;  // chosen_impact_method()
+  CushionModel cushion_model = CushionModel::mathavan_2010;  // the scene's, for the record
   int table_impacts = 0;  // cushion contacts (of every ball) the table answered (the rest
                           // fell back)
   std::vector<ShotEvent> events;  // the cue ball's (balls[0].events)
