@@ -201,7 +201,7 @@ Validation CueParams::validate() const {
 }
 
 // End masses (TP A-31's m_e): chosen, not measured, so that the squirt at a tip offset of
-// R/4 falls where the published cue-test results put ordinary shafts (docs/squirt.md).
+// R/4 lies inside the 0.5-3 deg band of real cues (docs/squirt.md).
 CueParams snooker_cue() { return CueParams{0.012}; }
 CueParams pool_cue() { return CueParams{0.010}; }
 
