@@ -22,6 +22,8 @@ const std::initializer_list<FieldName> kPlannerFlags = {
     {{"local_starts"}, "--starts"},
     {{"threads"}, "--threads"},
     {{"noise", "scale"}, "--noise"},
+    {{"noise", "tip_offset_relative"}, "--tip-offset-relative"},
+    {{"noise", "squirt_judgement"}, "--squirt-judgement"},
     {{"robustness_samples"}, "--samples"},
     {{"max_alternatives"}, "--alternatives"},
     {{"simulation", "impact_accuracy"}, "--accuracy"},
@@ -70,8 +72,22 @@ void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
       ->group(group);
   c.add_option("--noise", args->noise,
                "Scale of the player's execution noise (Gaussian: aim 0.125 deg, speed "
-               "0.075 m/s, tip offset 0.5 mm each way, times this), >= 0; 0 is a perfect cue")
+               "0.075 m/s, tip offset 0.5 mm each way plus --tip-offset-relative of the "
+               "offset, squirt misjudged by --squirt-judgement of it; all times this), >= 0; "
+               "0 is a perfect cue")
       ->type_name("X")
+      ->capture_default_str()
+      ->group(group);
+  c.add_option("--tip-offset-relative", args->tip_offset_relative,
+               "Execution noise: the tip offset's deviation each way grows by this fraction of "
+               "the offset intended that way (docs/squirt.md), >= 0")
+      ->type_name("F")
+      ->capture_default_str()
+      ->group(group);
+  c.add_option("--squirt-judgement", args->squirt_judgement,
+               "Execution noise: the player's allowance for squirt errs by this fraction of "
+               "the squirt (an aim deviation; docs/squirt.md), >= 0")
+      ->type_name("F")
       ->capture_default_str()
       ->group(group);
   c.add_flag("--robust", args->robust,
@@ -127,6 +143,8 @@ std::string read_planner_options(const PlannerArgs& args, int threads,
   options->seed = args.seed;
   options->threads = static_cast<int>(physics::thread_count(threads));
   options->noise.scale = args.noise;
+  options->noise.tip_offset_relative = args.tip_offset_relative;
+  options->noise.squirt_judgement = args.squirt_judgement;
   options->robust = args.robust;
   options->robustness_samples = args.samples;
   options->enforce_rigid_limit = args.enforce_rigid_limit;
@@ -141,7 +159,10 @@ std::span<const FieldName> planner_flag_names() { return kPlannerFlags; }
 std::string noise_text(const plan::NoiseModel& noise) {
   return "aim " + number(noise.aim_deg * noise.scale) + " deg, speed " +
          number(noise.speed * noise.scale) + " m/s, tip offset " +
-         number(1000.0 * noise.tip_offset * noise.scale) + " mm (standard deviations; --noise " +
+         number(1000.0 * noise.tip_offset * noise.scale) + " mm + " +
+         number(100.0 * noise.tip_offset_relative * noise.scale) + " % of the offset, squirt " +
+         number(100.0 * noise.squirt_judgement * noise.scale) +
+         " % misjudged (standard deviations; --noise " +
          number(noise.scale) + ")";
 }
 

@@ -27,6 +27,8 @@ struct PlannerArgs {
   int starts = planner::PlannerOptions{}.local_starts;
   uint64_t seed = planner::PlannerOptions{}.seed;
   double noise = 1.0;  // multiplies every deviation of the NoiseModel
+  double tip_offset_relative = planner::NoiseModel{}.tip_offset_relative;  // --tip-offset-relative
+  double squirt_judgement = planner::NoiseModel{}.squirt_judgement;        // --squirt-judgement
   bool robust = false;
   int samples = planner::PlannerOptions{}.robustness_samples;
   bool enforce_rigid_limit = false;

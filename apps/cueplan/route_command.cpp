@@ -137,7 +137,9 @@ nlohmann::ordered_json route_json(const prob::Problem& problem, const plan::Rout
                    {{"scale", o.noise.scale},
                     {"aim_deg", o.noise.aim_deg},
                     {"speed", o.noise.speed},
-                    {"tip_offset", o.noise.tip_offset}}},
+                    {"tip_offset", o.noise.tip_offset},
+                    {"tip_offset_relative", o.noise.tip_offset_relative},
+                    {"squirt_judgement", o.noise.squirt_judgement}}},
                   {"samples", o.robustness_samples},
                   {"intermediate_zone_m", o.intermediate_zone_m}};
   if (!svg_file.empty()) j["svg"] = svg_file;

@@ -431,8 +431,9 @@ ApiReply Api::simulate(std::string_view body) const {
     const ordered_json* stroke = member(request, "stroke");
     if (stroke == nullptr || !stroke->is_object())
       throw bad("stroke", "stroke is required: an object {speed (m/s), aim_deg (deg from +x), "
-                          "topspin_k, sidespin_k}");
-    check_keys(*stroke, {"speed", "aim_deg", "topspin_k", "sidespin_k"}, "stroke");
+                          "topspin_k, sidespin_k, elevation_deg}");
+    check_keys(*stroke, {"speed", "aim_deg", "topspin_k", "sidespin_k", "elevation_deg"},
+               "stroke");
     phys::Shot shot{NAN, NAN, 0.0, 0.0};
     for (const char* required : {"speed", "aim_deg"})
       if (member(*stroke, required) == nullptr)
@@ -445,12 +446,14 @@ ApiReply Api::simulate(std::string_view body) const {
       shot.topspin_k = read_number(*k, "stroke.topspin_k", nullptr);
     if (const ordered_json* k = member(*stroke, "sidespin_k"))
       shot.sidespin_k = read_number(*k, "stroke.sidespin_k", nullptr);
+    if (const ordered_json* e = member(*stroke, "elevation_deg"))
+      shot.elevation_deg = read_number(*e, "stroke.elevation_deg", "deg");
     constexpr ShotNames kStrokeNames = {"stroke.speed", "stroke.aim_deg", "stroke.topspin_k",
-                                        "stroke.sidespin_k"};
+                                        "stroke.sidespin_k", "stroke.elevation_deg"};
     if (std::string why = check_shot_inputs(shot, kStrokeNames); !why.empty()) {
       std::string field = "stroke";
       for (const char* name : {kStrokeNames.speed, kStrokeNames.aim, kStrokeNames.topspin,
-                               kStrokeNames.sidespin})
+                               kStrokeNames.sidespin, kStrokeNames.elevation})
         if (why.rfind(std::string(name) + " ", 0) == 0) field = name;
       throw bad(field, why);
     }

@@ -197,7 +197,9 @@ ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot&
   j["shot"] = {{"speed", p.shot.speed},
                {"aim_deg", p.shot.aim_deg},
                {"topspin_k", p.shot.topspin_k},
-               {"sidespin_k", p.shot.sidespin_k}};
+               {"sidespin_k", p.shot.sidespin_k},
+               {"elevation_deg", p.shot.elevation_deg},
+               {"squirt_deg", squirt_deg(problem.scene, p.shot)}};
   const plan::TipOffset t = plan::tip_offset(p.shot);
   j["tip_offset"] = {{"right", t.right}, {"up", t.up}};
   j["stroke"] = plan::describe_stroke(p.shot);

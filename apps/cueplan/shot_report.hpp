@@ -51,7 +51,7 @@ std::vector<std::pair<std::string, std::string>> pot_lines(const planner::PotRep
 nlohmann::ordered_json pot_json(const planner::PotReport& pot);
 
 // The stroke as `cueplan solve --json` reports a shot: shot {speed, aim_deg, topspin_k,
-// sidespin_k}, tip_offset, stroke, outcome, final_position, miss_distance (null unless at
+// sidespin_k, elevation_deg, squirt_deg}, tip_offset, stroke, outcome, final_position, miss_distance (null unless at
 // rest on a problem with a target), success_probability, success, solves, cushion_hits,
 // route, route_names, family, within_limits, violations, constraints,
 // max_cushion_normal_speed, rigid_limit_exceeded, impact_method, failure {condition,

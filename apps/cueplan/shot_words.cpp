@@ -76,6 +76,21 @@ std::string tip_offset_words(const phys::Shot& shot) {
                      t.right < 0.0 ? "left" : "right", std::abs(t.up), t.up < 0.0 ? "below" : "above");
 }
 
+double squirt_deg(const phys::Scene& scene, const phys::Shot& shot) {
+  return phys::squirt_angle_deg(scene.cue, scene.ball_and_cushion.mass, scene.radius(),
+                                shot.sidespin_k);
+}
+
+std::string squirt_words(const phys::Scene& scene, const phys::Shot& shot) {
+  if (shot.sidespin_k == 0.0) return {};
+  const double s = squirt_deg(scene, shot);
+  std::string text = fmt::format("the cue ball leaves {:.2f} deg {} of the cue's line",
+                                 std::abs(s), s > 0.0 ? "left" : "right");
+  if (shot.elevation_deg > 0.0)
+    text += fmt::format(", then swerves {} while it slides", shot.sidespin_k > 0.0 ? "right" : "left");
+  return text;
+}
+
 std::string cushions_allowed(const problems::Limits& limits) {
   return limits.cushions_min == limits.cushions_max
              ? std::to_string(limits.cushions_min)

@@ -23,6 +23,14 @@ void report_line(std::ostream& out, std::string_view label, const std::string& t
 // "0.231 R right of centre, 0.100 R below centre".
 std::string tip_offset_words(const physics::Shot& shot);
 
+// The squirt of `shot` on `scene` (deg, counter-clockwise from the cue's line to the cue
+// ball's: physics::squirt_angle_deg with the scene's cue and ball).
+double squirt_deg(const physics::Scene& scene, const physics::Shot& shot);
+// Where the cue ball goes for a stroke with side: "the cue ball leaves 1.2 deg left of
+// the cue's line", and with an elevated cue "then swerves right while it slides". Empty
+// for a centre-ball stroke.
+std::string squirt_words(const physics::Scene& scene, const physics::Shot& shot);
+
 // The cushion counts a problem allows: "1" or "1 to 3".
 std::string cushions_allowed(const problems::Limits& limits);
 

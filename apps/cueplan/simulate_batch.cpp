@@ -101,7 +101,8 @@ std::string check_shot_inputs(const phys::Shot& shot, const ShotNames& names) {
   const FieldName by_field[] = {{{"speed"}, names.speed},
                                 {{"aim_deg"}, names.aim},
                                 {{"topspin_k"}, names.topspin},
-                                {{"sidespin_k"}, names.sidespin}};
+                                {{"sidespin_k"}, names.sidespin},
+                                {{"elevation_deg"}, names.elevation}};
   return message_in(*e, by_field);
 }
 

@@ -34,9 +34,13 @@ struct ShotNames {
   const char* aim;
   const char* topspin;
   const char* sidespin;
+  const char* elevation;
 };
-inline constexpr ShotNames kShotFlagNames = {"--speed", "--aim", "--topspin-k", "--sidespin-k"};
-inline constexpr ShotNames kShotColumnNames = {"speed", "aim_deg", "topspin_k", "sidespin_k"};
+inline constexpr ShotNames kShotFlagNames = {"--speed", "--aim", "--topspin-k", "--sidespin-k",
+                                             "--elevation-deg"};
+// The batch has no elevation column: its strokes are level.
+inline constexpr ShotNames kShotColumnNames = {"speed", "aim_deg", "topspin_k", "sidespin_k",
+                                               "elevation_deg"};
 
 // Empty when the shot can be simulated (speed > 0, everything finite); otherwise one
 // line naming the input.

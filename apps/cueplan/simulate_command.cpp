@@ -155,7 +155,11 @@ void write_text(std::ostream& out, const prob::Problem& problem, const phys::Sho
                    ", k_T = " + number(shot.topspin_k) +
                    " (w_T = " + number(shot.topspin_k * spin_unit, "rad/s") +
                    "), k_S = " + number(shot.sidespin_k) +
-                   " (w_S = " + number(shot.sidespin_k * spin_unit, "rad/s") + ")");
+                   " (w_S = " + number(shot.sidespin_k * spin_unit, "rad/s") + ")" +
+                   (shot.elevation_deg > 0.0
+                        ? ", cue elevated " + number(shot.elevation_deg, "deg")
+                        : std::string()));
+  if (const std::string s = squirt_words(scene, shot); !s.empty()) line("squirt", s);
   line("cue ball",
        "x = " + number(problem.cue_ball.x, "m") + ", y = " + number(problem.cue_ball.y, "m"));
   line("status", status_text(r));
@@ -300,7 +304,9 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
   j["shot"] = {{"speed", shot.speed},
                {"aim_deg", shot.aim_deg},
                {"topspin_k", shot.topspin_k},
-               {"sidespin_k", shot.sidespin_k}};
+               {"sidespin_k", shot.sidespin_k},
+               {"elevation_deg", shot.elevation_deg},
+               {"squirt_deg", squirt_deg(scene, shot)}};
   j["status"] = phys::to_string(r.status);
   j["message"] = r.message;
   if (r.rigid_limit_exceeded) j["warning"] = rigid_limit_warning(problem, r);
@@ -327,6 +333,8 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
                   {"aim_deg", n.aim_deg},
                   {"speed", n.speed},
                   {"tip_offset", n.tip_offset},
+                  {"tip_offset_relative", n.tip_offset_relative},
+                  {"squirt_judgement", n.squirt_judgement},
                   {"seed", success->seed}};
   }
   j["max_cushion_normal_speed"] = r.max_cushion_normal_speed;
@@ -357,6 +365,8 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
                 {"aim_deg", "deg from +x, counter-clockwise"},
                 {"topspin_k", "k_T = w_T R / V"},
                 {"sidespin_k", "k_S = w_S R / V, > 0 right spin"},
+                {"elevation_deg", "deg, the cue above the horizontal"},
+                {"squirt_deg", "deg from the cue's line to the cue ball's, > 0 counter-clockwise"},
                 {"tolerance", "m"},
                 {"miss_distance", "m"},
                 {"success", "fractions of noisy strokes, 0..1, with 95 % Wilson intervals"},
@@ -503,6 +513,12 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
       ->type_name("k_S")
       ->capture_default_str()
       ->group(stroke);
+  c.add_option("--elevation-deg", args_.elevation_deg,
+               "The cue's elevation above the horizontal (deg, 0 <= e < 90): with side, the "
+               "sliding cue ball swerves toward the side struck")
+      ->type_name("deg")
+      ->capture_default_str()
+      ->group(stroke);
 
   const char* method = "Cushion impacts";
   c.add_option("--method", args_.method,
@@ -601,7 +617,7 @@ SimulateCommand::SimulateCommand(CLI::App& parent) {
   batch->excludes(svg);
   batch->excludes(samples);
   batch->excludes(trace);
-  for (const char* flag : {"--speed", "--aim", "--topspin-k", "--sidespin-k"})
+  for (const char* flag : {"--speed", "--aim", "--topspin-k", "--sidespin-k", "--elevation-deg"})
     batch->excludes(c.get_option(flag));
 
   c.footer(
@@ -650,6 +666,7 @@ std::string SimulateCommand::read_shot(phys::Shot* shot) const {
   if (!given("--speed")) return "--speed is required (m/s) unless --batch is given";
   if (!given("--aim")) return "--aim is required (deg) unless --batch is given";
   *shot = {args_.speed, args_.aim_deg, args_.topspin_k, args_.sidespin_k};
+  shot->elevation_deg = args_.elevation_deg;
   return check_shot_inputs(*shot, kShotFlagNames);
 }
 

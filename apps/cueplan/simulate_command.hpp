@@ -37,6 +37,7 @@ struct SimulateArgs {
   double aim_deg = NAN;      // deg from +x, counter-clockwise, --aim
   double topspin_k = 0.0;    // --topspin-k, k_T; 0 is a centre-ball strike
   double sidespin_k = 0.0;   // --sidespin-k, k_S; > 0 right spin
+  double elevation_deg = 0.0;  // --elevation-deg, the cue above the horizontal
   std::string method = kShotImpactMethod;
   double accuracy = physics::SimulationOptions{}.impact_accuracy;  // relative, per impact
   std::string table_cache;  // empty: default_table_cache_dir() (table_cache.hpp)

@@ -90,6 +90,8 @@ void write_text(std::ostream& out, const prob::Problem& problem,
                    " (w_S = " + number(s.sidespin_k * spin_unit, "rad/s") + ")");
   line("stroke", plan::describe_stroke(s));
   line("tip offset", tip_offset_text(s, problem.limits));
+  if (s.elevation_deg > 0.0) line("elevation", number(s.elevation_deg, "deg"));
+  if (const std::string w = squirt_words(problem.scene, s); !w.empty()) line("squirt", w);
   line("landing", landing_text(b));
   if (b.pot)
     for (const auto& [label, text] : pot_lines(*b.pot)) line(label, text);
@@ -197,7 +199,9 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
                    {{"scale", options.noise.scale},
                     {"aim_deg", options.noise.aim_deg},
                     {"speed", options.noise.speed},
-                    {"tip_offset", options.noise.tip_offset}}},
+                    {"tip_offset", options.noise.tip_offset},
+                    {"tip_offset_relative", options.noise.tip_offset_relative},
+                    {"squirt_judgement", options.noise.squirt_judgement}}},
                   {"samples", options.robustness_samples},
                   {"enforce_rigid_limit", options.enforce_rigid_limit},
                   {"alternatives", options.max_alternatives},

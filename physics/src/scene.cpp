@@ -1,7 +1,9 @@
 // The scene, the stroke and their checks; names of the simulator's enums.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "ball_motion.hpp"
@@ -138,6 +140,7 @@ Validation Scene::validate() const {
     return invalid({"cloth", "mu_spin"}, "must be finite and not negative", cloth.mu_spin);
   if (!std::isfinite(cloth.gravity) || !(cloth.gravity > 0.0))
     return invalid({"cloth", "gravity"}, "must be positive and finite (m/s^2)", cloth.gravity);
+  if (Validation e = cue.validate()) return e->under({"cue"});
   if (Validation e = ball_ball_params().validate()) {
     e->field = scene_field_of_collision(e->field);
     if (e->other) e->other = scene_field_of_collision(*e->other);
@@ -191,12 +194,47 @@ Scene snooker_scene() {
   return s;
 }
 
+Validation CueParams::validate() const {
+  if (!std::isfinite(end_mass) || !(end_mass > 0.0))
+    return invalid({"end_mass"}, "must be positive and finite (kg)", end_mass);
+  return {};
+}
+
+// End masses (TP A-31's m_e): chosen, not measured, so that the squirt at a tip offset of
+// R/4 lies inside the 0.5-3 deg band of real cues (docs/squirt.md).
+CueParams snooker_cue() { return CueParams{0.012}; }
+CueParams pool_cue() { return CueParams{0.010}; }
+
+double squirt_angle_deg(const CueParams& cue, double ball_mass, double radius, double sidespin_k) {
+  // Lateral tip offset over R: b / R = k_S / 2.5 (PHYSICS.md, "Cue strike").
+  const double a = std::clamp(sidespin_k / kSpinPerTipOffset, -1.0, 1.0);
+  (void)radius;  // the angle depends on b / R only
+  const double c2 = 1.0 - a * a;
+  // Alciatore TP A-31: the tip, a free end mass m_e, and the ball share the sideways
+  // impulse while the tip's push along the contact normal sets the ball's speed.
+  const double num = 2.5 * a * std::sqrt(c2);
+  const double den = 1.0 + ball_mass / cue.end_mass + 2.5 * c2;
+  return std::atan2(num, den) * 180.0 / std::numbers::pi;
+}
+
+std::optional<double> end_mass_for_squirt(double ball_mass, double squirt_deg) {
+  if (!(squirt_deg > 0.0) || !std::isfinite(squirt_deg) || !(ball_mass > 0.0)) return {};
+  const double a = 0.25, c2 = 1.0 - a * a;
+  // tan s = 2.5 a sqrt(c2) / (1 + m_ball / m_end + 2.5 c2), solved for m_ball / m_end.
+  const double ratio = 2.5 * a * std::sqrt(c2) / std::tan(squirt_deg * std::numbers::pi / 180.0) -
+                       1.0 - 2.5 * c2;
+  if (!(ratio > 0.0) || !std::isfinite(ratio)) return {};
+  return ball_mass / ratio;
+}
+
 Validation Shot::validate() const {
   if (!std::isfinite(speed) || !(speed > 0.0))
     return invalid({"speed"}, "must be positive and finite (m/s)", speed);
   if (!std::isfinite(aim_deg)) return invalid({"aim_deg"}, "must be finite (deg)", aim_deg);
   if (!std::isfinite(topspin_k)) return invalid({"topspin_k"}, "must be finite", topspin_k);
   if (!std::isfinite(sidespin_k)) return invalid({"sidespin_k"}, "must be finite", sidespin_k);
+  if (!std::isfinite(elevation_deg) || elevation_deg < 0.0 || !(elevation_deg < 90.0))
+    return invalid({"elevation_deg"}, "must be at least 0 and below 90 (deg)", elevation_deg);
   return {};
 }
 

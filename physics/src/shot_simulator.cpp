@@ -167,8 +167,9 @@ class ShotRun {
     impact_error_ = detail::check_impact_inputs(scene_.ball_and_cushion, impact_);
   }
 
-  // Cue strike: speed along the aim, topspin about the horizontal axis perpendicular
-  // to the motion (natural-roll sense), sidespin about z. The object balls lie at rest.
+  // Cue strike: speed along the aim turned by the squirt, topspin about the horizontal
+  // axis perpendicular to the motion (natural-roll sense), sidespin about z, and with an
+  // elevated cue the swerve spin about the line of motion. The object balls lie at rest.
   void strike(Vec2 cue_ball, const Shot& shot) {
     const size_t n = 1 + scene_.balls.size();
     runs_.resize(n);
@@ -182,12 +183,29 @@ class ShotRun {
     }
     if (n > 1) pairs_.resize(n * (n - 1) / 2);
 
-    const double phi = shot.aim_deg * kDegree;
+    // The cue ball leaves at the squirt angle off the cue's line: to the left of it
+    // (counter-clockwise) for right side. The spins are taken about its actual motion.
+    const double squirt = squirt_angle_deg(scene_.cue, scene_.ball_and_cushion.mass,
+                                           cloth_.radius, shot.sidespin_k);
+    const double phi = (shot.aim_deg + squirt) * kDegree;
+    const Vec2 along{std::cos(phi), std::sin(phi)};
     Ball& b = runs_[0].b;
     b.p = cue_ball;
-    b.v = {shot.speed * std::cos(phi), shot.speed * std::sin(phi)};
+    b.v = {shot.speed * along.x, shot.speed * along.y};
     const double wt = shot.topspin_k * shot.speed / cloth_.radius;
-    b.w = {-wt * std::sin(phi), wt * std::cos(phi), shot.sidespin_k * shot.speed / cloth_.radius};
+    const double ws = shot.sidespin_k * shot.speed / cloth_.radius;
+    // Swerve. In the frame (x along the motion, y to its left, z up) an elevated cue
+    // pushes with impulse J (cos e, 0, -sin e) through a point of its line at r =
+    // (0, -d, c): d is the tip offset to the right (d > 0 for right side), c its
+    // height. The angular impulse r x J = J (d sin e, c cos e, d cos e) gives the ball
+    // w_z = d cos e J / I and w_par = d sin e J / I about its line of motion; the
+    // horizontal speed is V = J cos e / m (the vertical part goes into the cloth; the
+    // jump is ignored). So w_z R / V = (5/2) d / R = k_S keeps its meaning and
+    // w_par = w_z tan e = k_S (V / R) tan e. That spin makes the contact point slip
+    // sideways, u_y = R w_par, and the cloth's friction, against the slip, curves the
+    // sliding ball to the right for right side until it rolls.
+    const double wpar = shot.elevation_deg > 0.0 ? ws * std::tan(shot.elevation_deg * kDegree) : 0.0;
+    b.w = {-wt * along.y + wpar * along.x, wt * along.x + wpar * along.y, ws};
     log(0, EventType::strike);
     runs_[0].changed = true;
     runs_[0].check_cushions = cushions_in_reach(b);

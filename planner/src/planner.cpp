@@ -109,7 +109,9 @@ physics::ShotResult play(const Task& task, const SearchSpace& space, const doubl
       task, *shot, simulation, *offset_hint, space.pot_offset(u) * task.pot_aim->lateral_reach());
   *simulations += aimed.simulations;
   *shot = aimed.shot;
-  if (aimed.found) *offset_hint = detail::wrap_degrees(shot->aim_deg - task.pot_aim->ghost_aim_deg());
+  if (aimed.found)
+    *offset_hint = detail::wrap_degrees(shot->aim_deg - task.pot_aim->ghost_aim_deg() +
+                                        detail::squirt_of(task.problem, *shot));
   return std::move(aimed.result);
 }
 
@@ -158,7 +160,8 @@ class NominalObjective {
   bool enforce_rigid_limit_;
   bool record_families_;
   int evaluations_ = 0;
-  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim (deg)
+  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim, less its
+                              // squirt (deg): the allowance for throw
   std::vector<double> best_history_;  // best score after each evaluation
   Candidate best_;
   detail::Landing last_;
@@ -201,7 +204,8 @@ class RobustObjective {
   const PlannerOptions& options_;
   const std::vector<detail::NoiseDraw>& draws_;
   int simulations_ = 0;
-  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim (deg)
+  double offset_hint_ = 0.0;  // a pot: the last aim found less the ghost-ball aim, less its
+                              // squirt (deg): the allowance for throw
   double best_score_ = kInf;
   physics::Shot best_;
 };
@@ -586,6 +590,7 @@ class Planning {
         parents.size(), physics::thread_count(options_.threads, static_cast<int>(parents.size())),
         [&](size_t j, unsigned) {
           physics::Shot shot = finals_[parents[j]].shot.shot;
+          const double parent_squirt = detail::squirt_of(task.problem, shot);
           shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
           if (task.pot_aim) {
             // Side changes the throw: the aim is solved again for the new spin.
@@ -593,7 +598,8 @@ class Planning {
                 start_pot_offset(task, shot, report_sim()) * task.pot_aim->lateral_reach();
             const detail::PotAim::Aimed aimed = task.pot_aim->aim(
                 task, shot, report_sim(),
-                detail::wrap_degrees(shot.aim_deg - task.pot_aim->ghost_aim_deg()), lateral);
+                detail::wrap_degrees(shot.aim_deg - task.pot_aim->ghost_aim_deg() + parent_squirt),
+                lateral);
             simulations[j] += aimed.simulations + 1;
             shot = aimed.shot;
           }

@@ -174,6 +174,12 @@ std::optional<double> PotAim::direction_error(const physics::ShotResult& result,
   return std::asin(std::clamp(off / norm(to_aim), -1.0, 1.0)) * kDeg;
 }
 
+double squirt_of(const problems::Problem& problem, const physics::Shot& shot) {
+  const physics::Scene& scene = problem.scene;
+  return physics::squirt_angle_deg(scene.cue, scene.ball_and_cushion.mass, scene.radius(),
+                                   shot.sidespin_k);
+}
+
 PotAim::Aimed PotAim::aim(const Task& task, const physics::Shot& shot,
                           const physics::SimulationOptions& simulation,
                           double offset_hint_deg, double lateral_m) const {
@@ -194,10 +200,12 @@ PotAim::Aimed PotAim::aim(const Task& task, const physics::Shot& shot,
     if (!a || !b) return 0.0;
     return wrap_degrees(*b - *a) / (2.0 * h);
   };
-  double x = ghost_aim_deg_ + offset_hint_deg;
+  // The cue's line is turned from the ball's by the squirt: start that much the other way.
+  const double squirt = squirt_of(task.problem, shot);
+  double x = ghost_aim_deg_ + offset_hint_deg - squirt;
   std::optional<double> e = play(x);
   if (!e && offset_hint_deg != 0.0) {
-    x = ghost_aim_deg_;
+    x = ghost_aim_deg_ - squirt;
     e = play(x);
   }
   if (!e) return out;

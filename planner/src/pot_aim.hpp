@@ -18,6 +18,9 @@ struct Task;
 // A pot problem's geometry, fixed once: the chain of balls the cue ball drives (the
 // first contact, then the pot's ball when they differ: a plant), the pocket, and the
 // ghost-ball aim. Immutable after construction, so one instance serves every thread.
+// The squirt (deg, counter-clockwise) of `shot` with the problem's cue and ball.
+double squirt_of(const problems::Problem& problem, const physics::Shot& shot);
+
 class PotAim {
  public:
   // `problem` must have a pot (problems::validate checked it) and outlive this.
@@ -55,7 +58,7 @@ class PotAim {
     bool found = false;          // the pot's ball's line meets the pocket's centre
   };
   // The aim that pots with `shot`'s speed and spin (its aim is ignored): Newton steps
-  // from the ghost-ball aim plus `offset_hint_deg` (a nearby stroke's allowance for
+  // from the ghost-ball aim plus `offset_hint_deg` less the stroke's squirt (a nearby stroke's allowance for
   // throw), with the geometric gain as the slope, then regula falsi once the error
   // changes sign, until the pot's ball's line passes within kAimTolerance of the
   // pocket's centre. Not found when its line cannot be brought there (the cue ball

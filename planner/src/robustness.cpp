@@ -55,16 +55,29 @@ std::vector<NoiseDraw> noise_draws(int samples, uint64_t seed) {
 }
 
 bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseModel& noise,
-                  double radius, double miscue_k, physics::Shot* out) {
+                  double radius, double miscue_k, double squirt_deg, physics::Shot* out) {
   const double s = noise.scale;
-  // Tip offsets d become spin by k = 2.5 d / R (PHYSICS.md, "Cue strike").
+  // Tip offsets d become spin by k = 2.5 d / R (PHYSICS.md, "Cue strike"): a fixed
+  // deviation, and one that grows with the offset intended each way.
   const double dk = physics::kSpinPerTipOffset * noise.tip_offset * s / radius;
+  const double rel = noise.tip_offset_relative * s;
+  const double dk_right = dk + rel * std::abs(shot.sidespin_k);
+  const double dk_up = dk + rel * std::abs(shot.topspin_k);
+  // The aim's deviation and the misjudged squirt, independent normals, add in quadrature.
+  const double aim_sd = std::hypot(noise.aim_deg, noise.squirt_judgement * squirt_deg) * s;
+  *out = shot;
   out->speed = shot.speed + noise.speed * s * draw.speed;
-  out->aim_deg = shot.aim_deg + noise.aim_deg * s * draw.aim;
-  out->sidespin_k = shot.sidespin_k + dk * draw.right;
-  out->topspin_k = shot.topspin_k + dk * draw.up;
+  out->aim_deg = shot.aim_deg + aim_sd * draw.aim;
+  out->sidespin_k = shot.sidespin_k + dk_right * draw.right;
+  out->topspin_k = shot.topspin_k + dk_up * draw.up;
   if (!(out->speed > 0.0)) return false;
   return std::hypot(out->topspin_k, out->sidespin_k) <= miscue_k * (1.0 + 1e-12);
+}
+
+double intended_squirt_deg(const problems::Problem& problem, const physics::Shot& shot) {
+  const physics::Scene& scene = problem.scene;
+  return physics::squirt_angle_deg(scene.cue, scene.ball_and_cushion.mass, scene.radius(),
+                                   shot.sidespin_k);
 }
 
 double miscue_limit(const problems::Problem& problem) {
@@ -78,10 +91,11 @@ double soft_success(const Task& task, const physics::Shot& shot,
   const problems::Problem& problem = task.problem;
   const double radius = problem.scene.radius();
   const double miscue = miscue_limit(problem);
+  const double squirt = intended_squirt_deg(problem, shot);
   double sum = 0.0;
   for (const NoiseDraw& d : draws) {
     physics::Shot s;
-    if (!noisy_stroke(shot, d, noise, radius, miscue, &s)) continue;
+    if (!noisy_stroke(shot, d, noise, radius, miscue, squirt, &s)) continue;
     const physics::ShotResult r = task.simulate(s, simulation);
     ++*simulations;
     // At rest after allowed cushions (and, with a pot, the pot made cleanly).
@@ -173,13 +187,14 @@ void extend_sample(const Task& task, const physics::Shot& shot, std::span<const 
   quiet.record_path = false;
   const double radius = problem.scene.radius();
   const double miscue = miscue_limit(problem);
+  const double squirt = intended_squirt_deg(problem, shot);
   const bool timed = deadline != Clock::time_point::max();
   std::vector<uint8_t>& outcomes = sampled->outcomes;
   outcomes.reserve(draws.size());
   for (size_t i = outcomes.size(); i < draws.size(); ++i) {
     if (timed && Clock::now() >= deadline) break;
     physics::Shot s;
-    if (!noisy_stroke(shot, draws[i], noise, radius, miscue, &s)) {
+    if (!noisy_stroke(shot, draws[i], noise, radius, miscue, squirt, &s)) {
       outcomes.push_back(0);  // a miscue fails every condition
       continue;
     }

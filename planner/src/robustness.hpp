@@ -41,10 +41,16 @@ class NoiseStream {
   std::vector<NoiseDraw> draws_;
 };
 
-// The stroke a player makes aiming at `shot` with errors `draw` scaled by `noise`.
-// False for a miscue (tip offset beyond miscue_k) or a stroke without speed.
+// The stroke a player makes aiming at `shot` with errors `draw` scaled by `noise`:
+// the aim errs by noise.aim_deg and, with side, by the misjudged squirt (squirt_deg, the
+// intended stroke's, times noise.squirt_judgement; the two in quadrature, one draw); the
+// tip offset each way by noise.tip_offset plus noise.tip_offset_relative of the offset
+// intended that way. False for a miscue (tip offset beyond miscue_k) or a stroke
+// without speed.
 bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseModel& noise,
-                  double radius, double miscue_k, physics::Shot* out);
+                  double radius, double miscue_k, double squirt_deg, physics::Shot* out);
+// The squirt (deg) of `shot` on the problem's table, with its cue (physics::squirt_angle_deg).
+double intended_squirt_deg(const problems::Problem& problem, const physics::Shot& shot);
 
 // The spin beyond which a noisy stroke miscues: the larger of 1.25 (d = R/2) and the
 // problem's own spin limit.

@@ -94,6 +94,8 @@ SearchSpace::SearchSpace(const problems::Limits& limits, double aim_centre_deg,
 
 physics::Shot SearchSpace::shot(const double* u) const {
   physics::Shot s;
+  // The elevation is not searched: the least the limits allow (a level cue by default).
+  s.elevation_deg = limits_.elevation_min_deg;
   int i = 0;
   s.speed = limits_.speed_min + clamp01(u[i++]) * (limits_.speed_max - limits_.speed_min);
   if (aim_searched_) {

@@ -96,6 +96,10 @@ physics::Validation NoiseModel::validate() const {
     return invalid({"speed"}, "must be finite and not negative (m/s)", speed);
   if (!std::isfinite(tip_offset) || tip_offset < 0.0)
     return invalid({"tip_offset"}, "must be finite and not negative (m)", tip_offset);
+  if (!std::isfinite(tip_offset_relative) || tip_offset_relative < 0.0)
+    return invalid({"tip_offset_relative"}, "must be finite and not negative", tip_offset_relative);
+  if (!std::isfinite(squirt_judgement) || squirt_judgement < 0.0)
+    return invalid({"squirt_judgement"}, "must be finite and not negative", squirt_judgement);
   if (!std::isfinite(scale) || scale < 0.0)
     return invalid({"scale"}, "must be finite and not negative", scale);
   return {};

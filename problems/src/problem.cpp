@@ -69,6 +69,8 @@ std::string file_field(const FieldPath& path) {
     if (*member == "aim") return "limits.aim_deg";
     if (*member == "cushions_min") return "limits.cushions[0]";
     if (*member == "cushions_max") return "limits.cushions[1]";
+    if (*member == "elevation_min_deg") return "limits.elevation_deg[0]";
+    if (*member == "elevation_max_deg") return "limits.elevation_deg[1]";
   }
   return path.text();  // cue_ball, target, tolerance, max_strokes, time_budget_s, pot.ball,
                        // first_contact
@@ -103,6 +105,13 @@ Validation validate(const Problem& p) {
   if (l.cushions_max < l.cushions_min)
     return invalid({"limits", "cushions_max"}, "must not be below the least count",
                    l.cushions_max);
+  if (!std::isfinite(l.elevation_min_deg) || l.elevation_min_deg < 0.0)
+    return invalid({"limits", "elevation_min_deg"}, "must be finite and not negative (deg)",
+                   l.elevation_min_deg);
+  if (!std::isfinite(l.elevation_max_deg) || l.elevation_max_deg < l.elevation_min_deg ||
+      !(l.elevation_max_deg < 90.0))
+    return invalid({"limits", "elevation_max_deg"},
+                   "must be at least the least elevation and below 90 (deg)", l.elevation_max_deg);
   const AimLimit& a = l.aim;
   if (!std::isfinite(a.lo_deg) || !std::isfinite(a.hi_deg))
     return invalid({"limits", "aim"}, "must be finite (deg)",
@@ -211,6 +220,10 @@ std::string check_shot(const Limits& limits, const physics::Shot& shot) {
   const double spin = std::hypot(shot.topspin_k, shot.sidespin_k);
   if (!std::isfinite(spin) || spin > limits.spin_max * (1 + kSlack))
     return fmt::format("spin sqrt(k_T^2 + k_S^2) = {:.6g} exceeds {:.6g}", spin, limits.spin_max);
+  if (!(shot.elevation_deg >= limits.elevation_min_deg - kSlack &&
+        shot.elevation_deg <= limits.elevation_max_deg + kSlack))
+    return fmt::format("elevation {:.6g} deg lies outside [{:.6g}, {:.6g}] deg", shot.elevation_deg,
+                       limits.elevation_min_deg, limits.elevation_max_deg);
   const AimLimit& aim = limits.aim;
   if (!std::isfinite(shot.aim_deg))
     return "aim must be finite";

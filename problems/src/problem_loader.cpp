@@ -208,17 +208,55 @@ void read_obstacles(const Mapping& root, physics::Scene& scene, FieldLines& line
   }
 }
 
+// cue: snooker | pool | {end_mass: kg} | {squirt_deg_at_half_tip: deg} (the squirt at a
+// tip offset of R/4 with this problem's ball, turned into the equivalent end mass). Read
+// after the ball, whose mass and radius the conversion needs.
+void read_cue(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+  scene.cue = physics::snooker_cue();
+  const std::optional<Field> field = root.find("cue");
+  if (!field) return;
+  if (field->value.IsScalar()) {
+    const std::string name = detail::one_of(*field, {"snooker", "pool"});
+    scene.cue = name == "pool" ? physics::pool_cue() : physics::snooker_cue();
+    return;
+  }
+  if (!field->value.IsMap())
+    detail::fail(*field, "must be snooker, pool, {end_mass: KG} or {squirt_deg_at_half_tip: DEG}, "
+                         "got " + detail::describe_value(field->value));
+  const Mapping m(*field, {"end_mass", "squirt_deg_at_half_tip"}, lines);
+  const std::optional<Field> mass = m.find("end_mass");
+  const std::optional<Field> squirt = m.find("squirt_deg_at_half_tip");
+  if (mass && squirt)
+    detail::fail(*squirt, "give end_mass or squirt_deg_at_half_tip, not both");
+  if (mass) {
+    scene.cue.end_mass = detail::positive_number(*mass);
+  } else if (squirt) {
+    const double s = detail::positive_number(*squirt);
+    const double m_ball = scene.ball_and_cushion.mass;
+    const std::optional<double> end_mass = physics::end_mass_for_squirt(m_ball, s);
+    if (!end_mass)
+      detail::fail(*squirt, fmt::format("must be below {:.4g} deg: the squirt of a rigid cue at a "
+                                        "tip offset of R/4",
+                                        physics::squirt_angle_deg(physics::CueParams{1e300}, m_ball,
+                                                                  1.0, 0.25 * physics::kSpinPerTipOffset)));
+    scene.cue.end_mass = *end_mass;
+  } else {
+    detail::fail(*field, "needs end_mass (kg) or squirt_deg_at_half_tip (deg)");
+  }
+}
+
 // A ball position [x, y]; where it may lie is checked with the whole problem.
 physics::Vec2 read_position(const Mapping& root, std::string_view key, std::string_view meaning) {
   return detail::point(root.require(key, meaning));
 }
 
-// limits.speed [min, max] m/s, spin, aim_deg (free | phi | [lo, hi]), cushions (n | [lo, hi]).
+// limits.speed [min, max] m/s, spin, aim_deg (free | phi | [lo, hi]), cushions (n | [lo, hi]),
+// elevation_deg [min, max].
 Limits read_limits(const Mapping& root, FieldLines& lines) {
   Limits limits;
   const std::optional<Field> field = root.find("limits");
   if (!field) return limits;
-  const Mapping m(*field, {"speed", "spin", "aim_deg", "cushions"}, lines);
+  const Mapping m(*field, {"speed", "spin", "aim_deg", "cushions", "elevation_deg"}, lines);
 
   if (const std::optional<Field> speed = m.find("speed")) {
     const auto bounds = detail::sequence(*speed, 2, "[min, max] in m/s");
@@ -252,6 +290,16 @@ Limits read_limits(const Mapping& root, FieldLines& lines) {
     }
   }
 
+  if (const std::optional<Field> elevation = m.find("elevation_deg")) {
+    const auto bounds = detail::sequence(*elevation, 2, "[min, max] in deg, 0 <= min <= max < 90");
+    limits.elevation_min_deg = detail::non_negative_number(bounds[0]);
+    limits.elevation_max_deg = detail::non_negative_number(bounds[1]);
+    if (!(limits.elevation_min_deg <= limits.elevation_max_deg) ||
+        !(limits.elevation_max_deg < 90.0))
+      detail::fail(*elevation, "needs 0 <= min <= max < 90 (deg), got [" +
+                                   bounds[0].value.Scalar() + ", " + bounds[1].value.Scalar() + "]");
+  }
+
   if (const std::optional<Field> cushions = m.find("cushions")) {
     constexpr int kMost = 1000;
     if (cushions->value.IsSequence()) {
@@ -274,7 +322,7 @@ Problem read_problem(const Field& document, const std::string& source) {
   const Mapping root(
       document,
       {"name", "table", "ball", "physics", "cue_ball", "target", "tolerance", "obstacles", "balls",
-       "limits", "max_strokes", "time_budget_s", "pot", "first_contact"},
+       "limits", "max_strokes", "time_budget_s", "pot", "first_contact", "cue"},
       lines);
   Problem problem;
   problem.source = source;
@@ -284,6 +332,7 @@ Problem read_problem(const Field& document, const std::string& source) {
   read_table(root, lines, scene);
   read_ball(root, lines, scene);
   read_physics(root, lines, scene);
+  read_cue(root, lines, scene);
   read_obstacles(root, scene, lines);
   read_balls(root, lines, scene);
   problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m");

@@ -397,7 +397,9 @@ TEST(ShotSimulatorBalls, EventsWithinAPicosecondComeInTheContractsOrder) {
     const double t = (v - std::sqrt(v * v - 2.0 * a * d)) / a;
     for (double offset : {-5e-13, -1e-13, 0.0, 1e-13, 5e-13}) {
       const double ks = spin_decel * (t + offset) * s.radius() / v;
-      const ShotResult r = simulate(s, start, {v, 0.0, 1.0, ks});
+      // The cue aimed off +x by the squirt, so that the ball runs along +x.
+      const double aim = -squirt_angle_deg(s.cue, s.ball_and_cushion.mass, s.radius(), ks);
+      const ShotResult r = simulate(s, start, {v, aim, 1.0, ks});
       ASSERT_GE(r.events.size(), 3u);
       EXPECT_EQ(r.events[1].type, EventType::cushion) << "v " << v << " offset " << offset;
       EXPECT_NEAR(r.events[1].time, t, 1e-9);
@@ -624,8 +626,13 @@ TEST(ShotSimulatorBalls, MirrorSymmetryOfAWholeMultiBallShot) {
                                                {"green", {2.6, 1.2}},
                                                {"brown", {1.0, 1.3}}});
   const Vec2 cue{0.7, 0.5};
-  for (const Shot& shot :
-       {Shot{2.5, 12.0, 0.6, 0.5}, Shot{3.0, 11.0, -0.5, -0.5}, Shot{2.2, 12.0, 0.2, 0.8}}) {
+  // The cue ball's directions 12, 11 and 12 deg: the cue aimed off them by the squirt.
+  const auto squirt = [&](double k) {
+    return squirt_angle_deg(s.cue, s.ball_and_cushion.mass, s.radius(), k);
+  };
+  for (const Shot& shot : {Shot{2.5, 12.0 - squirt(0.5), 0.6, 0.5},
+                           Shot{3.0, 11.0 - squirt(-0.5), -0.5, -0.5},
+                           Shot{2.2, 12.0 - squirt(0.8), 0.2, 0.8}}) {
     const ShotResult a = simulate(s, cue, shot);
     const ShotResult b = simulate(mirrored(s), {cue.x, s.width - cue.y},
                                   {shot.speed, -shot.aim_deg, shot.topspin_k, -shot.sidespin_k});

@@ -44,6 +44,33 @@ struct ClothParams {
   double gravity = 9.81;    // m/s^2
 };
 
+// The cue, as the squirt model sees it (PHYSICS.md, "Squirt and swerve"): Alciatore's
+// TP A-31 treats the cue's tip end as a free mass `end_mass` during the ~1 ms contact, so
+// a tip offset to the side pushes the ball off the cue's line by an angle that grows with
+// end_mass / ball mass. Presets in docs/squirt.md.
+struct CueParams {
+  double end_mass = 0.012;  // kg, effective end mass (the snooker cue's; see snooker_cue())
+
+  // Empty when usable; otherwise the broken rule, {"end_mass"}.
+  Validation validate() const;
+};
+// A snooker cue (ash shaft, brass ferrule, 9.5 mm tip): end mass 12 g, squirt 2.3 deg at
+// a tip offset of R/4 with the snooker ball.
+CueParams snooker_cue();
+// A standard maple pool shaft: end mass 10 g, squirt 1.7 deg at R/4 with the pool ball.
+CueParams pool_cue();
+
+// The squirt angle (deg) of a stroke with sidespin k_S (tip offset b = k_S R / 2.5), by
+// TP A-31: tan s = (5/2)(b/R) sqrt(1 - (b/R)^2) / (1 + m_ball/m_end + (5/2)(1 - (b/R)^2)).
+// Signed as a turn seen from above: positive (counter-clockwise, to the left of the cue's
+// line) for right side (k_S > 0), negative for left side, 0 at centre. |b| is clamped to R.
+double squirt_angle_deg(const CueParams& cue, double ball_mass, double radius, double sidespin_k);
+
+// The end mass (kg) whose squirt at a tip offset of R/4 is `squirt_deg` with a ball of
+// `ball_mass`: squirt_angle_deg inverted. Empty when squirt_deg <= 0 or when no cue
+// squirts that much (even a rigid tip, end mass -> infinity, squirts less).
+std::optional<double> end_mass_for_squirt(double ball_mass, double squirt_deg);
+
 // Capture radius of a standard pocket (m): a ball whose centre comes this close to the
 // pocket's point drops.
 inline constexpr double kDefaultPocketRadius = 0.045;
@@ -82,6 +109,7 @@ struct Scene {
   std::vector<Vec2> obstacles;    // balls nothing may touch (same radius): a contact ends the shot
   std::vector<ObjectBall> balls;  // object balls the shot may strike
   BallContact ball_contact;
+  CueParams cue;  // the cue's end mass: how far side squirts the cue ball
 
   double radius() const { return ball_and_cushion.radius; }
   // Distance from a cushion nose line at which the ball's centre meets it: R cos(theta).
@@ -137,16 +165,19 @@ class CompiledScene {
 inline constexpr double kSpinPerTipOffset = 2.5;
 inline constexpr double kMiscueSpin = 1.25;
 
-// A stroke: speed V (m/s) along aim phi (deg from +x), topspin k_T and sidespin k_S in
-// the paper's dimensionless form (PHYSICS.md, "Cue strike").
+// A stroke: speed V (m/s), the cue's direction aim phi (deg from +x), topspin k_T and
+// sidespin k_S in the paper's dimensionless form (PHYSICS.md, "Cue strike"), and the
+// cue's elevation above the horizontal. With side the cue ball leaves off the cue's line
+// by the scene's squirt angle (squirt_angle_deg); with side and elevation it also swerves.
 struct Shot {
   double speed = 1.0;
   double aim_deg = 0.0;
   double topspin_k = 0.0;
   double sidespin_k = 0.0;
+  double elevation_deg = 0.0;  // 0 <= elevation < 90; 0: a level cue
 
-  // Empty when it can be played (speed > 0, everything finite); otherwise the first
-  // broken rule, fields named as these members.
+  // Empty when it can be played (speed > 0, everything finite, 0 <= elevation_deg < 90);
+  // otherwise the first broken rule, fields named as these members.
   Validation validate() const;
 };
 

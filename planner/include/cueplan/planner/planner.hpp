@@ -45,6 +45,14 @@ struct NoiseModel {
   double aim_deg = 0.125;      // standard deviation of the aim (deg)
   double speed = 0.075;        // standard deviation of the speed (m/s)
   double tip_offset = 0.0005;  // standard deviation of the tip offset each way (m); k = 2.5 d / R
+  // What side costs a player (docs/squirt.md). The tip lands less surely the further from
+  // centre it is aimed: each way the offset's deviation grows by this fraction of the
+  // offset intended that way. Through the squirt, an offset error is a direction error.
+  double tip_offset_relative = 0.1;
+  // A player allows for the squirt by aiming the cue off the line the ball must take, by
+  // feel: that allowance errs by this fraction of the squirt (a deviation added to the
+  // aim's in quadrature). Zero for a centre-ball stroke.
+  double squirt_judgement = 0.1;
   double scale = 1.0;          // multiplies every deviation (--noise)
   // Empty when usable; otherwise the first broken rule, fields named as these members.
   physics::Validation validate() const;

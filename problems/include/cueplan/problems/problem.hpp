@@ -43,6 +43,10 @@ struct Limits {
   AimLimit aim;            // free unless the file says otherwise
   int cushions_min = 1;    // cushion contacts allowed before the ball rests; >= 0
   int cushions_max = 3;    // >= cushions_min
+  // The cue's elevation (deg): 0 <= min <= max < 90. [0, 0], a level cue, unless the file
+  // says otherwise; the planner plays the least elevation allowed.
+  double elevation_min_deg = 0.0;
+  double elevation_max_deg = 0.0;
 };
 
 // An object ball into a pocket: what a pot-and-position shot is to do.
