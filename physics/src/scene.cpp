@@ -66,7 +66,10 @@ Validation place_error(const Scene& s, Vec2 p, const FieldPath& what, bool objec
     const bool in_mouth = dot(d, k.jaws->inward) > -off &&
                           norm(d) < k.jaws->shape.mouth + k.jaws->shape.shelf;
     const bool off_table = p.x < off || p.x > s.length - off || p.y < off || p.y > s.width - off;
-    if (in_hole || (off_table && in_mouth)) {
+    const double reach = k.jaws->shape.point_radius + off;
+    const bool on_point = norm(p - k.jaws->point_centre[0]) < reach * (1.0 - 1e-9) ||
+                          norm(p - k.jaws->point_centre[1]) < reach * (1.0 - 1e-9);
+    if (in_hole || ((off_table && in_mouth) || on_point)) {
       ValidationError e = invalid(what, in_hole ? "lies inside {other}" : "lies in the jaws of {other}");
       e.other = FieldPath{"pockets", static_cast<int>(i)};
       return e;
