@@ -338,6 +338,16 @@ Verdict check_outcome(const Problem& problem, const physics::ShotResult& result)
   if (problem.pot) {
     const Pot& pot = *problem.pot;
     const physics::BallOutcome* ball = outcome_of(result, pot.ball);
+    if (ball != nullptr && !ball->pocketed && ball->jaw_hits > 0) {
+      int jaw_pocket = -1;
+      for (const physics::ShotEvent& e : ball->events)
+        if (e.type == physics::EventType::jaw) jaw_pocket = e.index;
+      return broken(Failure::pot_missed,
+                    fmt::format("{} rattled out of the jaws of the {} pocket (it stops at x = "
+                                "{:.4g} m, y = {:.4g} m)",
+                                pot.ball, pocket_name(problem.scene, jaw_pocket),
+                                ball->final_position.x, ball->final_position.y));
+    }
     if (ball == nullptr || !ball->pocketed)
       return broken(Failure::pot_missed,
                     fmt::format("{} does not drop (it stops at x = {:.4g} m, y = {:.4g} m)",
