@@ -197,7 +197,49 @@ void BM_ShotBalls(benchmark::State& state, int which, int balls, Resolution how)
   state.counters["mean_events"] = events / n;
 }
 
+// The same shots on a table with pockets: the standard capture circles against the
+// snooker preset's jawed pockets (points and facings resolved by the cushion model,
+// cushion noses cut at the points), plus a stroke rolled into the bottom-left corner.
+// The jaws' cost is the ratio of the two (aim: at most 1.5).
+const Case kPocketCases[] = {
+    {"one_cushion", {0.70, 60.0, 0.5, 0.0}, 1},
+    {"three_cushions", {1.72, 15.0, 1.0, 1.0}, 3},
+    {"into_corner", {1.0, 180.0 + 32.0, 1.0, 0.0}, 0},
+};
+
+void BM_ShotPockets(benchmark::State& state, int which, bool jaws) {
+  Scene table;
+  if (jaws) {
+    const PocketPreset p = *pocket_preset("snooker");
+    table.pockets = jawed_pockets(table.length, table.width, p.corner, p.middle);
+  } else {
+    table.pockets = standard_pockets(table.length, table.width, kDefaultPocketRadius);
+  }
+  const CompiledScene s(table);
+  SimulationOptions o;
+  o.record_path = false;
+  const std::vector<Shot> shots = jittered(kPocketCases[which].base);
+  double pocketed = 0.0, jaw_hits = 0.0, events = 0.0;
+  for (const Shot& shot : shots) {
+    const ShotResult r = simulate(s, {0.8, 0.5}, shot, o);
+    pocketed += r.status == ShotStatus::pocketed ? 1.0 : 0.0;
+    jaw_hits += r.balls[0].jaw_hits;
+    events += static_cast<double>(r.events.size());
+  }
+  time_shots(state, s, shots, o);
+  const double n = static_cast<double>(shots.size());
+  state.counters["pocketed"] = pocketed / n;
+  state.counters["mean_jaw_hits"] = jaw_hits / n;
+  state.counters["mean_events"] = events / n;
+}
+
 void register_all() {
+  for (int which = 0; which < 3; ++which)
+    for (bool jaws : {false, true}) {
+      const std::string name = std::string("BM_ShotPockets/") + kPocketCases[which].name +
+                               (jaws ? "/jaws" : "/capture_circles");
+      benchmark::RegisterBenchmark(name.c_str(), BM_ShotPockets, which, jaws);
+    }
   for (int which = 0; which < 3; ++which)
     for (Resolution how : {Resolution::exact, Resolution::exact_loose, Resolution::table})
       for (int balls : {0, 1, 2, 8, 15}) {

@@ -171,10 +171,35 @@ ordered_json scene_json(const prob::Problem& problem) {
   const phys::Scene& scene = problem.scene;
   ordered_json pockets = ordered_json::array();
   const std::vector<std::string> names = pocket_names(scene);
-  for (size_t i = 0; i < scene.pockets.size(); ++i)
-    pockets.push_back({{"name", names[i]},
-                       {"centre", point(scene.pockets[i].centre)},
-                       {"radius", scene.pockets[i].radius}});
+  for (size_t i = 0; i < scene.pockets.size(); ++i) {
+    ordered_json pocket = {{"name", names[i]},
+                           {"centre", point(scene.pockets[i].centre)},
+                           {"radius", scene.pockets[i].radius}};
+    // A jawed pocket's geometry (PHYSICS.md, "Jawed pockets"), index 0 the left side
+    // as seen from the table: the shape, the unrounded nose corners, the points'
+    // rounding centres, the facings from their tangent points to the hole's depth, where
+    // each straight cushion nose ends, and the hole.
+    if (const auto& j = scene.pockets[i].jaws) {
+      ordered_json facings = ordered_json::array();
+      for (int k = 0; k < 2; ++k) {
+        const phys::Vec2 end{j->facing_start[k].x + j->facing_length[k] * j->facing_dir[k].x,
+                             j->facing_start[k].y + j->facing_length[k] * j->facing_dir[k].y};
+        facings.push_back({{"start", point(j->facing_start[k])}, {"end", point(end)}});
+      }
+      pocket["jaws"] = {{"mouth", j->shape.mouth},
+                        {"wall_angle_deg", j->shape.wall_angle_deg},
+                        {"shelf", j->shape.shelf},
+                        {"hole_radius", j->shape.hole_radius},
+                        {"point_radius", j->shape.point_radius},
+                        {"inward", point(j->inward)},
+                        {"corners", {point(j->corner[0]), point(j->corner[1])}},
+                        {"point_centres", {point(j->point_centre[0]), point(j->point_centre[1])}},
+                        {"nose_ends", {point(j->nose_tangent[0]), point(j->nose_tangent[1])}},
+                        {"facings", facings},
+                        {"hole_centre", point(j->hole_centre)}};
+    }
+    pockets.push_back(pocket);
+  }
   ordered_json obstacles = ordered_json::array();
   for (const phys::Vec2& o : scene.obstacles) obstacles.push_back(point(o));
   const prob::Limits& l = problem.limits;

@@ -165,7 +165,23 @@ std::vector<std::pair<std::string, std::string>> pot_lines(const plan::PotReport
                   pot.ball, pot.throw_deg >= 0.0 ? "counter-clockwise" : "clockwise",
                   std::abs(allowance), allowance >= 0.0 ? "counter-clockwise" : "clockwise",
                   pot.ghost_aim_deg));
-  if (pot.made)
+  if (pot.jaw_clearance_m)
+    lines.emplace_back(
+        "pot margin",
+        *pot.jaw_clearance_m >= 0.0
+            ? fmt::format("the {} clears the near ({}) jaw by {:.1f} mm{}", pot.ball,
+                          pot.near_jaw, 1e3 * *pot.jaw_clearance_m,
+                          pot.made ? fmt::format("; an aim error of {:.3f} deg rattles it or "
+                                                 "misses",
+                                                 pot.aim_margin_deg)
+                                   : std::string())
+            : fmt::format("the {}'s line meets the {} jaw ({:.1f} mm into it){}", pot.ball,
+                          pot.near_jaw, -1e3 * *pot.jaw_clearance_m,
+                          pot.made ? fmt::format("; it drops off the jaw, and an aim error of "
+                                                 "{:.3f} deg would miss",
+                                                 pot.aim_margin_deg)
+                                   : std::string()));
+  else if (pot.made)
     lines.emplace_back(
         "pot margin",
         fmt::format("{}'s centre passes {:.1f} mm inside the pocket's capture circle; an aim "
@@ -188,6 +204,10 @@ ordered_json pot_json(const plan::PotReport& pot) {
   j["aim_allowance_deg"] = pot.aim_allowance_deg;
   j["margin_m"] = pot.margin_m;
   j["aim_margin_deg"] = pot.aim_margin_deg;
+  if (pot.jaw_clearance_m) {
+    j["jaw_clearance_m"] = *pot.jaw_clearance_m;
+    j["near_jaw"] = pot.near_jaw;
+  }
   return j;
 }
 

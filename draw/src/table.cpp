@@ -391,8 +391,12 @@ std::vector<detail::LegendEntry> legend_entries(const TableScene& scene, const L
   if (!scene.scene.pockets.empty())
     entries.push_back(
         {[](Canvas& c, double x, double y) { draw_pocket_hole(c, x, y, 6.0, "legend-symbol"); },
-         fmt::format("pocket (a ball whose centre enters r = {:.3g} mm drops)",
-                     1000.0 * scene.scene.pockets.front().radius)});
+         scene.scene.pockets.front().jaws
+             ? fmt::format("pocket (jaws to scale; a ball whose centre enters the hole, "
+                           "r = {:.3g} mm, drops)",
+                           1000.0 * scene.scene.pockets.front().jaws->shape.hole_radius)
+             : fmt::format("pocket (a ball whose centre enters r = {:.3g} mm drops)",
+                           1000.0 * scene.scene.pockets.front().radius)});
   return entries;
 }
 
@@ -607,11 +611,57 @@ Mouth mouth_of(const phys::Pocket& p, const Layout& l) {
 // A pocket as a player sees it: the cushion's jaws cut back to a mouth, the hole behind
 // the nose in the rail, and on the cloth the dashed circle within which a ball's centre
 // drops (the capture circle the simulator uses).
+//
+// A jawed pocket is drawn as the simulator sees it: the cushion cut back along its two
+// facings from the rounded points, the hole (hole_radius, shelf beyond the mouth), and
+// the points' roundings and facings outlined.
+void jawed_pocket(Canvas& c, const Layout& l, const phys::PocketJaws& j) {
+  const Box& o = l.outer;
+  const Box band = l.cloth.grown(l.cushion);
+  const double far = 2.0 * (l.cushion + l.rail) / l.f.scale + j.shape.hole_radius * 4.0;  // m
+  const auto add = [](phys::Vec2 a, double s, phys::Vec2 d) {
+    return phys::Vec2{a.x + s * d.x, a.y + s * d.y};
+  };
+  c.clip(Path().rect(band.left, band.top, band.width(), band.height()));
+  std::vector<Point> channel;
+  for (int side = 0; side < 2; ++side) {
+    const int k = side == 0 ? 0 : 1;
+    const phys::Vec2 end = add(j.facing_start[k], j.facing_length[k] + far, j.facing_dir[k]);
+    if (side == 0) {
+      channel.push_back(l.f.at(j.nose_tangent[0]));
+      channel.push_back(l.f.at(j.corner[0]));
+      channel.push_back(l.f.at(end));
+    } else {
+      channel.push_back(l.f.at(end));
+      channel.push_back(l.f.at(j.corner[1]));
+      channel.push_back(l.f.at(j.nose_tangent[1]));
+    }
+  }
+  c.fill(Path().polygon(channel), kCloth, "pocket-jaws");
+  c.unclip();
+  c.clip(Path().rect(o.left, o.top, o.width(), o.height()));
+  const Point hole = l.f.at(j.hole_centre);
+  draw_pocket_hole(c, hole.x, hole.y, std::max(j.shape.hole_radius * l.f.scale, 2.0), "pocket");
+  const Pen edge{detail::darker(kCushion, 0.45), 1.0};
+  for (int k = 0; k < 2; ++k) {
+    const Point a = l.f.at(j.facing_start[k]);
+    const Point b = l.f.at(add(j.facing_start[k], j.facing_length[k], j.facing_dir[k]));
+    c.stroke(Path().move_to(a.x, a.y).line_to(b.x, b.y), edge, "pocket-facing");
+    const Point pc = l.f.at(j.point_centre[k]);
+    c.stroke(Path().circle(pc.x, pc.y, std::max(j.shape.point_radius * l.f.scale, 0.8)), edge,
+             "pocket-point");
+  }
+  c.unclip();
+}
+
 void pockets(Canvas& c, const Layout& l, const phys::Scene& scene) {
+  for (const phys::Pocket& p : scene.pockets)
+    if (p.jaws) jawed_pocket(c, l, *p.jaws);
   const Box& o = l.outer;
   const Box band = l.cloth.grown(l.cushion);
   c.clip(Path().rect(band.left, band.top, band.width(), band.height()));
   for (const phys::Pocket& p : scene.pockets) {
+    if (p.jaws) continue;
     const Mouth m = mouth_of(p, l);
     if (m.out.x == 0.0 && m.out.y == 0.0) continue;
     const Point at = l.f.at(p.centre);
@@ -647,6 +697,7 @@ void pockets(Canvas& c, const Layout& l, const phys::Scene& scene) {
   // The holes, behind the noses and within the table's outer edge.
   c.clip(Path().rect(o.left, o.top, o.width(), o.height()));
   for (const phys::Pocket& p : scene.pockets) {
+    if (p.jaws) continue;
     const Mouth m = mouth_of(p, l);
     const Point at = l.f.at(p.centre);
     const double r = pocket_radius_px(p, l);
@@ -656,6 +707,7 @@ void pockets(Canvas& c, const Layout& l, const phys::Scene& scene) {
   c.unclip();
   c.clip(Path().rect(l.cloth.left, l.cloth.top, l.cloth.width(), l.cloth.height()));
   for (const phys::Pocket& p : scene.pockets) {
+    if (p.jaws) continue;
     const Point at = l.f.at(p.centre);
     c.stroke(Path().circle(at.x, at.y, pocket_radius_px(p, l)),
              Pen{kPocket.with_alpha(0.45), 1.0, {2.0, 2.0}}, "pocket-capture");

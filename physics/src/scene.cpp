@@ -12,8 +12,11 @@
 
 namespace cueplan::physics {
 
+using detail::dot;
 using detail::norm;
+using detail::operator+;
 using detail::operator-;
+using detail::operator*;
 
 double Scene::contact_offset() const { return radius() * ball_and_cushion.cos_theta(); }
 
@@ -54,12 +57,31 @@ Validation place_error(const Scene& s, Vec2 p, const FieldPath& what, bool objec
   if (!std::isfinite(p.x) || !std::isfinite(p.y))
     return invalid(what, "must be finite (m)", std::isfinite(p.x) ? p.y : p.x);
   const double off = s.contact_offset();
+  // A jawed pocket holds a ball whose centre is in its hole; one in its mouth beyond
+  // the cushion lines is in the jaws.
+  for (size_t i = 0; i < s.pockets.size(); ++i) {
+    const Pocket& k = s.pockets[i];
+    if (!k.jaws) continue;
+    const bool in_hole = norm(p - k.jaws->hole_centre) < k.jaws->shape.hole_radius;
+    const Vec2 d = p - k.jaws->mouth_centre;
+    const bool in_mouth = dot(d, k.jaws->inward) > -off &&
+                          norm(d) < k.jaws->shape.mouth + k.jaws->shape.shelf;
+    const bool off_table = p.x < off || p.x > s.length - off || p.y < off || p.y > s.width - off;
+    const double reach = k.jaws->shape.point_radius + off;
+    const bool on_point = norm(p - k.jaws->point_centre[0]) < reach * (1.0 - 1e-9) ||
+                          norm(p - k.jaws->point_centre[1]) < reach * (1.0 - 1e-9);
+    if (in_hole || ((off_table && in_mouth) || on_point)) {
+      ValidationError e = invalid(what, in_hole ? "lies inside {other}" : "lies in the jaws of {other}");
+      e.other = FieldPath{"pockets", static_cast<int>(i)};
+      return e;
+    }
+  }
   if (p.x < off || p.x > s.length - off || p.y < off || p.y > s.width - off)
     return invalid(what, fmt::format("({:.4g}, {:.4g}) lies off the table: its centre must be "
                                      "within [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m",
                                      p.x, p.y, off, s.length - off, off, s.width - off));
   for (size_t i = 0; i < s.pockets.size(); ++i) {
-    if (norm(p - s.pockets[i].centre) < s.pockets[i].radius) {
+    if (!s.pockets[i].jaws && norm(p - s.pockets[i].centre) < s.pockets[i].radius) {
       ValidationError e = invalid(what, "lies inside {other}");
       e.other = FieldPath{"pockets", static_cast<int>(i)};
       return e;
@@ -154,6 +176,8 @@ Validation Scene::validate() const {
                      std::isfinite(k.centre.x) ? k.centre.y : k.centre.x);
     if (!std::isfinite(k.radius) || !(k.radius > 0.0))
       return invalid({"pockets", index, "radius"}, "must be positive and finite (m)", k.radius);
+    if (k.jaws)
+      if (Validation e = k.jaws->shape.validate(radius())) return e->under({"pockets", index});
   }
   for (size_t i = 0; i < obstacles.size(); ++i) {
     const FieldPath name{"obstacles", static_cast<int>(i)};
@@ -184,8 +208,137 @@ Validation Scene::check_rest_position(Vec2 p, const FieldPath& what) const {
 }
 
 std::vector<Pocket> standard_pockets(double length, double width, double radius) {
-  return {{{0.0, 0.0}, radius},   {{length / 2, 0.0}, radius},   {{length, 0.0}, radius},
-          {{0.0, width}, radius}, {{length / 2, width}, radius}, {{length, width}, radius}};
+  return {{{0.0, 0.0}, radius, {}},   {{length / 2, 0.0}, radius, {}},
+          {{length, 0.0}, radius, {}},  {{0.0, width}, radius, {}},
+          {{length / 2, width}, radius, {}}, {{length, width}, radius, {}}};
+}
+
+namespace {
+
+constexpr double kInch = 0.0254;
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+Vec2 unit(Vec2 v) { return (1.0 / norm(v)) * v; }
+
+// One jawed pocket from its unrounded nose corners (left, right as seen from the table),
+// the cushions they end and each cushion's nose direction toward the pocket.
+Pocket jawed_pocket(const PocketShape& shape, Vec2 inward, Vec2 left_corner, Vec2 right_corner,
+                    int left_cushion, int right_cushion, Vec2 left_nose, Vec2 right_nose) {
+  PocketJaws j;
+  j.shape = shape;
+  j.inward = inward;
+  j.corner[0] = left_corner;
+  j.corner[1] = right_corner;
+  j.mouth_centre = 0.5 * (left_corner + right_corner);
+  j.cushion[0] = left_cushion;
+  j.cushion[1] = right_cushion;
+  const Vec2 left{-inward.y, inward.x};  // toward the left corner
+  const double a = shape.wall_angle_deg * kDegree;
+  // Facings converge: each is turned from the centre line toward it.
+  const Vec2 facing[2] = {std::cos(a) * inward - std::sin(a) * left,
+                          std::cos(a) * inward + std::sin(a) * left};
+  const Vec2 nose[2] = {left_nose, right_nose};
+  const double hole_depth = shape.shelf + shape.hole_radius;  // of the hole's centre
+  for (int side = 0; side < 2; ++side) {
+    // The rounding sits in the rubber's wedge between the nose (back along -nose) and
+    // the facing; its angle phi is the "pocket angle" (142 deg for a WPA corner).
+    const Vec2 back = -1.0 * nose[side];
+    const double phi = std::acos(std::clamp(dot(back, facing[side]), -1.0, 1.0));
+    const double r = shape.point_radius;
+    const double along = r / std::tan(0.5 * phi);  // corner to each tangent point
+    const Vec2 bisector = unit(back + facing[side]);
+    j.point_centre[side] = j.corner[side] + (r / std::sin(0.5 * phi)) * bisector;
+    j.nose_tangent[side] = j.corner[side] + along * back;
+    j.facing_start[side] = j.corner[side] + along * facing[side];
+    j.facing_dir[side] = facing[side];
+    // To the depth of the hole's centre: past it every centre the channel admits lies in
+    // the hole (PocketShape::validate), so a ball never meets the facing beyond.
+    j.facing_length[side] = std::max(0.0, hole_depth / std::cos(a) - along);
+  }
+  j.hole_centre = j.mouth_centre + hole_depth * inward;
+  Pocket p;
+  p.centre = j.mouth_centre;
+  p.radius = 0.5 * shape.mouth;
+  p.jaws = j;
+  return p;
+}
+
+}  // namespace
+
+Validation PocketShape::validate(double ball_radius) const {
+  for (const auto& [name, value] :
+       {std::pair{"mouth", mouth}, {"wall_angle_deg", wall_angle_deg}, {"shelf", shelf},
+        {"hole_radius", hole_radius}, {"point_radius", point_radius}})
+    if (!std::isfinite(value)) return invalid({name}, "must be finite", value);
+  if (!(mouth > 2.0 * ball_radius))
+    return invalid({"mouth"},
+                   fmt::format("{:.4g} m is narrower than a ball ({:.4g} m)", mouth, 2.0 * ball_radius));
+  if (wall_angle_deg < 0.0 || !(wall_angle_deg < 90.0))
+    return invalid({"wall_angle_deg"},
+                   "must be in [0, 90) deg: the facings converge into the pocket at that angle "
+                   "to its centre line",
+                   wall_angle_deg);
+  if (shelf < 0.0) return invalid({"shelf"}, "must not be negative (m)", shelf);
+  if (point_radius < 0.0) return invalid({"point_radius"}, "must not be negative (m)", point_radius);
+  if (!(hole_radius > ball_radius))
+    return invalid({"hole_radius"},
+                   fmt::format("{:.4g} m must exceed the ball's radius ({:.4g} m)", hole_radius,
+                               ball_radius),
+                   hole_radius);
+  const double a = wall_angle_deg * kDegree;
+  const double hole_depth = shelf + hole_radius;
+  // The facings cross (mouth / 2) / tan(a) beyond the mouth line.
+  if (a > 0.0 && 0.5 * mouth / std::tan(a) <= hole_depth)
+    return invalid({"wall_angle_deg"},
+                   fmt::format("{:.4g} deg makes the facings cross {:.4g} m beyond the mouth, "
+                               "before the hole's centre ({:.4g} m)",
+                               wall_angle_deg, 0.5 * mouth / std::tan(a), hole_depth),
+                   wall_angle_deg);
+  // At the hole's centre depth every centre the channel admits must lie in the hole, so
+  // that no ball passes it: the channel's half-width there, between the facings
+  // themselves (a bound that holds for any cushion height), is at most the hole's radius.
+  const double channel = 0.5 * mouth - hole_depth * std::tan(a);
+  if (channel > hole_radius)
+    return invalid({"hole_radius"},
+                   fmt::format("{:.4g} m does not close the channel between the facings "
+                               "({:.4g} m either side of the centre line at the hole's centre)",
+                               hole_radius, channel),
+                   hole_radius);
+  return {};
+}
+
+std::vector<Pocket> jawed_pockets(double length, double width, const PocketShape& corner,
+                                  const PocketShape& middle) {
+  const double c = corner.mouth / std::numbers::sqrt2;  // corner to each nose corner
+  const double s = std::numbers::sqrt2 / 2.0;
+  const double h = 0.5 * middle.mouth;
+  // Cushions: 0 y = 0, 1 x = length, 2 y = width, 3 x = 0.
+  return {
+      jawed_pocket(corner, {-s, -s}, {c, 0.0}, {0.0, c}, 0, 3, {-1, 0}, {0, -1}),
+      jawed_pocket(middle, {0, -1}, {length / 2 + h, 0.0}, {length / 2 - h, 0.0}, 0, 0, {-1, 0},
+                   {1, 0}),
+      jawed_pocket(corner, {s, -s}, {length, c}, {length - c, 0.0}, 1, 0, {0, -1}, {1, 0}),
+      jawed_pocket(corner, {-s, s}, {0.0, width - c}, {c, width}, 3, 2, {0, 1}, {-1, 0}),
+      jawed_pocket(middle, {0, 1}, {length / 2 - h, width}, {length / 2 + h, width}, 2, 2, {1, 0},
+                   {-1, 0}),
+      jawed_pocket(corner, {s, s}, {length - c, width}, {length, width - c}, 2, 1, {1, 0}, {0, 1}),
+  };
+}
+
+std::optional<PocketPreset> pocket_preset(std::string_view name) {
+  if (name == "pool") {
+    // WPA equipment specifications: corner mouth 4.5-4.625 in, side 5-5.125 in; pocket
+    // angles 142 deg (corner) and 104 deg (side); shelf corner 1-2.25 in, side
+    // 0-0.375 in. Hole radius as in Alciatore's TP 3.6; point rounding a small 1/8 in.
+    return PocketPreset{{4.5625 * kInch, 7.0, 1.625 * kInch, 2.75 * kInch, 0.125 * kInch},
+                        {5.0625 * kInch, 14.0, 0.1875 * kInch, 2.75 * kInch, 0.125 * kInch}};
+  }
+  if (name == "snooker") {
+    // Typical dimensions of pockets cut to the WPBSA templates (the templates themselves
+    // are not published; docs/pockets.md says where these come from).
+    return PocketPreset{{0.086, 4.0, 0.010, 0.045, 0.010}, {0.105, 10.0, 0.0, 0.050, 0.012}};
+  }
+  return std::nullopt;
 }
 
 Scene snooker_scene() {
@@ -251,6 +404,7 @@ const char* to_string(EventType type) {
     case EventType::obstacle: return "obstacle";
     case EventType::rest: return "rest";
     case EventType::ball_contact: return "ball_contact";
+    case EventType::jaw: return "jaw";
   }
   return "unknown";
 }

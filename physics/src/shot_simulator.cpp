@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <vector>
 
 #include "ball_motion.hpp"
 #include "cueplan/physics/shot.hpp"
@@ -40,6 +42,7 @@ int rank(EventType type) {
   switch (type) {
     case EventType::ball_contact: return 0;
     case EventType::cushion: return 1;
+    case EventType::jaw: return 1;  // a jaw contact is a cushion contact
     case EventType::pocket: return 2;
     case EventType::obstacle: return 3;
     default: return 4;
@@ -52,6 +55,97 @@ struct CushionLine {
   Vec2 normal;
   double contact;  // n . p at contact
 };
+
+// A straight cushion nose stops where a jawed pocket's point begins: the stretch of the
+// cushion's line between the pockets' nose tangents (along x for cushions 0 and 2, y for
+// 1 and 3) that lies in a pocket's mouth is open.
+struct Gap {
+  double lo, hi;
+};
+using CushionGaps = std::array<std::vector<Gap>, 4>;
+
+double along_cushion(int cushion, Vec2 p) { return cushion % 2 == 0 ? p.x : p.y; }
+
+CushionGaps cushion_gaps(const Scene& s) {
+  CushionGaps gaps;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (const Pocket& k : s.pockets) {
+    if (!k.jaws) continue;
+    const PocketJaws& j = *k.jaws;
+    if (j.cushion[0] == j.cushion[1]) {
+      const double a = along_cushion(j.cushion[0], j.nose_tangent[0]);
+      const double b = along_cushion(j.cushion[1], j.nose_tangent[1]);
+      gaps[static_cast<size_t>(j.cushion[0])].push_back({std::min(a, b), std::max(a, b)});
+      continue;
+    }
+    for (int side = 0; side < 2; ++side) {
+      const int c = j.cushion[side];
+      const double t = along_cushion(c, j.nose_tangent[side]);
+      // The gap runs from the tangent toward the corner the cushion ends at.
+      const double toward = along_cushion(c, j.mouth_centre - j.nose_tangent[side]);
+      gaps[static_cast<size_t>(c)].push_back(toward < 0.0 ? Gap{-inf, t} : Gap{t, inf});
+    }
+  }
+  return gaps;
+}
+
+// A jawed pocket's parts as the ball's centre meets them: each facing a line (normal n
+// from the ball into it, contact where n . p = contact) over [0, length] along `dir`
+// from `start`; each point a circle of radius point_radius + R cos(theta). `box` bounds
+// all of them, for a cheap first test.
+struct JawPart {
+  Vec2 normal, start, dir;
+  double contact = 0.0, length = 0.0;
+};
+struct Jaws {
+  int pocket = -1;
+  JawPart facing[2];
+  Vec2 point[2];
+  double point_reach = 0.0;  // point_radius + R cos(theta)
+  detail::Box box{};
+};
+
+// Event codes of jaw contacts (NextEvent::which, Next::other): after the four cushions,
+// four parts per pocket, so that a cushion ranks before a jaw at the same instant.
+constexpr int kFirstJaw = 4;
+int jaw_code(int pocket, int part) { return kFirstJaw + 4 * pocket + part; }
+int jaw_pocket(int code) { return (code - kFirstJaw) / 4; }
+int jaw_part(int code) { return (code - kFirstJaw) % 4; }
+
+std::vector<Jaws> jaws_of(const Scene& s) {
+  std::vector<Jaws> out;
+  const double off = s.contact_offset();
+  for (size_t i = 0; i < s.pockets.size(); ++i) {
+    if (!s.pockets[i].jaws) continue;
+    const PocketJaws& j = *s.pockets[i].jaws;
+    Jaws w;
+    w.pocket = static_cast<int>(i);
+    w.point_reach = j.shape.point_radius + off;
+    double xlo = kNever, xhi = -kNever, ylo = kNever, yhi = -kNever;
+    const auto grow = [&](Vec2 p, double r) {
+      xlo = std::min(xlo, p.x - r);
+      xhi = std::max(xhi, p.x + r);
+      ylo = std::min(ylo, p.y - r);
+      yhi = std::max(yhi, p.y + r);
+    };
+    for (int side = 0; side < 2; ++side) {
+      JawPart& f = w.facing[side];
+      f.start = j.facing_start[side];
+      f.dir = j.facing_dir[side];
+      f.length = j.facing_length[side];
+      // The rubber lies to the facing's left on the left side, to its right on the right.
+      f.normal = side == 0 ? Vec2{-f.dir.y, f.dir.x} : Vec2{f.dir.y, -f.dir.x};
+      f.contact = dot(f.normal, f.start) - off;
+      w.point[side] = j.point_centre[side];
+      grow(w.point[side], w.point_reach);
+      grow(f.start, off);
+      grow(f.start + f.length * f.dir, off);
+    }
+    w.box = {xlo, xhi, ylo, yhi};
+    out.push_back(w);
+  }
+  return out;
+}
 
 std::array<CushionLine, 4> cushion_lines(const Scene& s) {
   const double off = s.contact_offset();
@@ -145,6 +239,8 @@ class ShotRun {
         options_(options),
         cloth_(scene_),
         lines_(cushion_lines(scene_)),
+        gaps_(cushion_gaps(scene_)),
+        jaws_(jaws_of(scene_)),
         ball_ball_(compiled.ball_ball_params()),
         result_(result) {
     // The cheapest impact method that meets the accuracy asked for: the table where its
@@ -300,9 +396,16 @@ class ShotRun {
         if (hit < next.after) next = {EventType::cushion, hit, i};
       }
     }
+    for (const Jaws& w : jaws_) {
+      if (!box_meets(q, next.after, w.box)) continue;
+      for (int part = 0; part < 4; ++part) {
+        const double hit = jaw_contact(q, w, part, next.after);
+        if (hit < next.after) next = {EventType::jaw, hit, jaw_code(w.pocket, part)};
+      }
+    }
     for (size_t i = 0; i < scene_.pockets.size(); ++i) {
-      const double hit =
-          detail::entry_time(q, next.after, scene_.pockets[i].centre, scene_.pockets[i].radius);
+      const auto [centre, radius] = capture_circle(i);
+      const double hit = detail::entry_time(q, next.after, centre, radius);
       if (hit < next.after) next = {EventType::pocket, hit, static_cast<int>(i)};
     }
     for (size_t i = 0; i < scene_.obstacles.size(); ++i) {
@@ -337,11 +440,18 @@ class ShotRun {
         if (before_best(EventType::cushion, i) && dot(lines_[i].normal, p) >= lines_[i].contact)
           consider(EventType::cushion, cushion_contact(q, i, end), i);
     }
+    for (const Jaws& w : jaws_) {
+      for (int part = 0; part < 4; ++part) {
+        const int code = jaw_code(w.pocket, part);
+        if (before_best(EventType::jaw, code) && jaw_touched(w, part, p))
+          consider(EventType::jaw, jaw_contact(q, w, part, end), code);
+      }
+    }
     for (size_t i = 0; i < scene_.pockets.size(); ++i) {
-      const Pocket& k = scene_.pockets[i];
-      const Vec2 d = p - k.centre;
-      if (before_best(EventType::pocket, static_cast<int>(i)) && dot(d, d) < k.radius * k.radius)
-        consider(EventType::pocket, detail::entry_time(q, end, k.centre, k.radius),
+      const auto [centre, radius] = capture_circle(i);
+      const Vec2 d = p - centre;
+      if (before_best(EventType::pocket, static_cast<int>(i)) && dot(d, d) < radius * radius)
+        consider(EventType::pocket, detail::entry_time(q, end, centre, radius),
                  static_cast<int>(i));
     }
     const double reach = 2.0 * cloth_.radius;
@@ -359,17 +469,99 @@ class ShotRun {
     const Vec2 n = lines_[i].normal;
     // n . p(t) - contact, negative on the table; contact when it rises to zero.
     double c[3] = {dot(n, q.a0) - lines_[i].contact, dot(n, q.a1), dot(n, q.a2)};
-    if (c[0] >= 0.0) {
+    const std::vector<Gap>& gaps = gaps_[static_cast<size_t>(i)];
+    // Past the line in a pocket's mouth: the jaws, not this cushion, meet the ball there.
+    const bool in_mouth = !gaps.empty() && c[0] >= 0.0 && in_gap(i, q.a0);
+    if (c[0] >= 0.0 && !in_mouth) {
       // Touching (or rounding past): on the line, so that a ball leaving the cushion
       // is caught when friction on the cloth brings it back.
       c[0] = 0.0;
     }
     if (c[0] == 0.0 && (c[1] > 0.0 || (c[1] == 0.0 && c[2] > 0.0)))
-      return 0.0;  // touching and moving in, or at rest across it and pressed in
+      return gaps.empty() || !in_gap(i, q.a0) ? 0.0 : kNever;  // touching and moving in, or
+                                                              // at rest across it and pressed in
     double roots[2];
     const int n_roots = detail::roots_in(c, 2, 0.0, horizon, roots);
     for (int k = 0; k < n_roots; ++k)
-      if (c[1] + 2.0 * c[2] * roots[k] > 0.0) return roots[k];
+      if (c[1] + 2.0 * c[2] * roots[k] > 0.0) {
+        if (gaps.empty()) return roots[k];
+        const double t = roots[k];
+        return in_gap(i, q.a0 + t * q.a1 + (t * t) * q.a2) ? kNever : roots[k];
+      }
+    return kNever;
+  }
+
+  // Whether the point p lies, along cushion i, in a pocket's mouth.
+  bool in_gap(int i, Vec2 p) const {
+    const double x = along_cushion(i, p);
+    for (const Gap& g : gaps_[static_cast<size_t>(i)])
+      if (x > g.lo && x < g.hi) return true;
+    return false;
+  }
+
+  // Where a ball is pocketed: the capture circle, or a jawed pocket's hole.
+  std::pair<Vec2, double> capture_circle(size_t i) const {
+    const Pocket& k = scene_.pockets[i];
+    if (k.jaws) return {k.jaws->hole_centre, k.jaws->shape.hole_radius};
+    return {k.centre, k.radius};
+  }
+
+  static bool box_meets(const Quadratic& q, double horizon, const detail::Box& b) {
+    const detail::Box p = detail::box_of(q, horizon);
+    return !(p.xhi < b.xlo || p.xlo > b.xhi || p.yhi < b.ylo || p.ylo > b.yhi);
+  }
+
+  // Part 0 left point, 1 left facing, 2 right facing, 3 right point.
+  static int jaw_side(int part) { return part < 2 ? 0 : 1; }
+  static bool is_point(int part) { return part == 0 || part == 3; }
+
+  // Whether the centre at p is at or past the part's contact (inside a point's circle,
+  // or past a facing's line along its length).
+  bool jaw_touched(const Jaws& w, int part, Vec2 p) const {
+    const int side = jaw_side(part);
+    if (is_point(part)) {
+      const Vec2 d = p - w.point[side];
+      return dot(d, d) < w.point_reach * w.point_reach;
+    }
+    const JawPart& f = w.facing[side];
+    const double s = dot(f.dir, p - f.start);
+    return s >= 0.0 && s <= f.length && dot(f.normal, p) >= f.contact;
+  }
+
+  // When within `horizon` the centre meets a jaw's part moving in; kNever if it does not.
+  double jaw_contact(const Quadratic& q, const Jaws& w, int part, double horizon) const {
+    const int side = jaw_side(part);
+    if (is_point(part)) {
+      // |p(t) - P|^2 - reach^2, a quartic: contact where it falls through zero.
+      double c[5];
+      detail::distance_quartic(q.a0 - w.point[side], q.a1, q.a2, w.point_reach, c);
+      if (c[0] <= 0.0) {
+        if (c[1] < 0.0) return 0.0;  // touching (or a rounding inside) and moving in
+        c[0] = 0.0;
+      }
+      double roots[detail::kMaxDegree];
+      const int n = detail::roots_in(c, 4, 0.0, horizon, roots);
+      for (int k = 0; k < n; ++k) {
+        const double t = roots[k];
+        const double slope = c[1] + t * (2.0 * c[2] + t * (3.0 * c[3] + t * 4.0 * c[4]));
+        if (t > 0.0 && slope < 0.0) return t;
+      }
+      return kNever;
+    }
+    const JawPart& f = w.facing[side];
+    double c[3] = {dot(f.normal, q.a0) - f.contact, dot(f.normal, q.a1), dot(f.normal, q.a2)};
+    const auto on_facing = [&](double t) {
+      const double s = dot(f.dir, q.a0 + t * q.a1 + (t * t) * q.a2 - f.start);
+      return s >= 0.0 && s <= f.length;
+    };
+    if (c[0] >= 0.0 && on_facing(0.0)) {
+      c[0] = 0.0;  // touching (or rounding past), as at a cushion
+      if (c[1] > 0.0 || (c[1] == 0.0 && c[2] > 0.0)) return 0.0;
+    }
+    double roots[2];
+    const int n = detail::roots_in(c, 2, 0.0, horizon, roots);
+    for (int k = 0; k < n; ++k)
+      if (c[1] + 2.0 * c[2] * roots[k] > 0.0 && on_facing(roots[k])) return roots[k];
     return kNever;
   }
 
@@ -497,7 +689,8 @@ class ShotRun {
         r.piece = Piece{};
         search_pairs_of(k);
         break;
-      case EventType::cushion: rebound(k, next.other); break;
+      case EventType::cushion:
+      case EventType::jaw: rebound(k, next.other); break;
       case EventType::pocket:
         r.on_table = false;
         r.moving = false;
@@ -522,12 +715,25 @@ class ShotRun {
     }
   }
 
-  // A cushion contact: into the cushion's frame (X = n x z, Y = n, Z = z), resolved by
-  // the impact model, and back.
+  // A cushion or jaw contact (`which`: a cushion 0-3, or a jaw's code): into the
+  // contact's frame (X = n x z, Y = n, Z = z, n from the ball into the cushion, the
+  // facing, or a point's centre), resolved by the impact model, and back.
   void rebound(int k, int which) {
     BallRun& r = runs_[static_cast<size_t>(k)];
     Ball& b = r.b;
-    const Vec2 n = lines_[which].normal;
+    const bool jaw = which >= kFirstJaw;
+    const Jaws* w = nullptr;
+    int part = -1;
+    if (jaw) {
+      const int pocket = jaw_pocket(which);
+      for (const Jaws& j : jaws_)
+        if (j.pocket == pocket) w = &j;
+      part = jaw_part(which);
+    }
+    const Vec2 n = !jaw ? lines_[which].normal : jaw_normal(*w, part, b.p);
+    const std::string where =
+        !jaw ? fmt::format("cushion {}", which)
+             : fmt::format("pocket {} jaw part {}", jaw_pocket(which), part);
     const Vec2 x_axis{n.y, -n.x};
     BallState in;
     in.velocity = {dot(b.v, x_axis), dot(b.v, n), 0.0};
@@ -542,36 +748,53 @@ class ShotRun {
       // follows them down to far below the rounding of the speed, so the run is cut at
       // kRoundingApproach): sliding along a cushion is not modelled.
       end_shot(ShotStatus::impact_failed,
-               fmt::format("{}cushion {}: the ball is pressed against it with no approach speed "
+               fmt::format("{}{}: the ball is pressed against it with no approach speed "
                            "(sliding along a cushion is not modelled)",
-                           whose(k), which));
+                           whose(k), where));
       return;
     }
     if (impact_error_) {
       end_shot(ShotStatus::impact_failed,
-               fmt::format("{}cushion {}: {}", whose(k), which, impact_error_->message()));
+               fmt::format("{}{}: {}", whose(k), where, impact_error_->message()));
       return;
     }
     const ImpactResult out = detail::resolve_checked_impact(scene_.ball_and_cushion, in, impact_);
     if (!usable(out.status)) {
-      end_shot(ShotStatus::impact_failed,
-               fmt::format("{}cushion {}: {}", whose(k), which, out.message));
+      end_shot(ShotStatus::impact_failed, fmt::format("{}{}: {}", whose(k), where, out.message));
       return;
     }
     b.v = out.outgoing.velocity.x * x_axis + out.outgoing.velocity.y * n;
     const Vec2 wh = out.outgoing.spin.x * x_axis + out.outgoing.spin.y * n;
     b.w = {wh.x, wh.y, out.outgoing.spin.z};
-    // On the contact line exactly, so rounding never leaves it past the cushion.
-    b.p = b.p + (lines_[which].contact - dot(n, b.p)) * n;
+    // On the contact line exactly, so rounding never leaves it past the cushion (a point:
+    // a hair outside its circle, as balls are put 2R apart after a collision).
+    if (!jaw) {
+      b.p = b.p + (lines_[which].contact - dot(n, b.p)) * n;
+    } else if (is_point(part)) {
+      b.p = w->point[jaw_side(part)] - (w->point_reach * (1.0 + 4e-16)) * n;
+    } else {
+      const JawPart& f = w->facing[jaw_side(part)];
+      b.p = b.p + (f.contact - dot(n, b.p)) * n;
+    }
     BallOutcome& o = result_->balls[static_cast<size_t>(k)];
-    ++o.cushion_hits;
+    if (jaw) ++o.jaw_hits;
+    else ++o.cushion_hits;
     o.max_cushion_normal_speed = std::max(o.max_cushion_normal_speed, in.velocity.y);
     if (k == 0 && out.status == ImpactStatus::rigid_limit_exceeded)
       result_->rigid_limit_exceeded = true;
     if (out.method_used == ImpactMethod::table) ++result_->table_impacts;
-    log(k, EventType::cushion, which, -1, in.velocity.y);
+    if (jaw) log(k, EventType::jaw, part, jaw_pocket(which), in.velocity.y);
+    else log(k, EventType::cushion, which, -1, in.velocity.y);
     r.changed = true;
     r.check_cushions = cushions_in_reach(b);
+  }
+
+  // The unit normal from the ball's centre at p into a jaw's part.
+  static Vec2 jaw_normal(const Jaws& w, int part, Vec2 p) {
+    const int side = jaw_side(part);
+    if (!is_point(part)) return w.facing[side].normal;
+    const Vec2 d = w.point[side] - p;
+    return (1.0 / std::hypot(d.x, d.y)) * d;
   }
 
   // A contact of balls i < j, resolved along their line of centres by the collision
@@ -767,6 +990,8 @@ class ShotRun {
   const SimulationOptions& options_;
   const ClothModel cloth_;
   const std::array<CushionLine, 4> lines_;
+  const CushionGaps gaps_;       // open stretches of the cushion lines (jawed pockets' mouths)
+  const std::vector<Jaws> jaws_;  // the jawed pockets' points and facings
   const BallBallParams& ball_ball_;
   ImpactOptions impact_;
   Validation impact_error_;  // what is wrong with the parameters or impact_, if anything

@@ -269,6 +269,24 @@ PotReport pot_report(const Task& task, const PotAim& aim, const physics::Shot& s
   p.made = drops(result);
   double margin = 0.0;
   if (aim.direction_error(result, &margin)) p.margin_m = margin;
+  // A jawed pocket: the ball's straight line from where it was struck against the
+  // points' contact circles.
+  const auto& jaws = problem.scene.pockets[static_cast<size_t>(p.pocket)].jaws;
+  for (size_t k = 1; jaws && k < result.balls.size(); ++k) {
+    if (result.balls[k].name != p.ball) continue;
+    const physics::ShotEvent* hit = first_contact_of(result.balls[k]);
+    if (hit == nullptr || !(norm(hit->velocity) > 0.0)) break;
+    const Vec2 d = unit(hit->velocity);
+    const double reach = jaws->shape.point_radius + problem.scene.contact_offset();
+    for (int side = 0; side < 2; ++side) {
+      const double clear = std::abs(cross(d, sub(jaws->point_centre[side], hit->position))) - reach;
+      if (!p.jaw_clearance_m || clear < *p.jaw_clearance_m) {
+        p.jaw_clearance_m = clear;
+        p.near_jaw = side == 0 ? "left" : "right";
+      }
+    }
+    break;
+  }
   // Cut and throw at the collision that set the pot's ball moving.
   for (size_t k = 1; k < result.balls.size(); ++k) {
     if (result.balls[k].name != p.ball) continue;

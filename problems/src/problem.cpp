@@ -46,7 +46,15 @@ std::string scene_field(const FieldPath& path) {
   }
   if (*head == "pockets") {
     const int* index = index_at(path, 1);
-    if (path.size() >= 3) return "table.pocket_radius";  // the one radius every pocket has
+    if (path.size() >= 3) {
+      // A jawed pocket's shape is the corner's or the middle's; a capture circle's radius
+      // is the one radius every pocket has.
+      const std::string* member = name_at(path, 2);
+      if (member != nullptr && *member != "radius" && *member != "centre" && index != nullptr)
+        return fmt::format("table.pockets.{}.{}", *index == 1 || *index == 4 ? "middle" : "corner",
+                           *member);
+      return "table.pocket_radius";
+    }
     if (index != nullptr && *index >= 0 && *index < 6)
       return fmt::format("the {} pocket", kPocketNames[*index]);
     return path.text();
@@ -179,9 +187,21 @@ std::string describe(const Problem& p) {
   const physics::CushionParams& b = s.ball_and_cushion;
   std::string text = p.name + "  (" + p.source + ")\n";
   text += fmt::format("  table {:.4g} x {:.4g} m, ", s.length, s.width);
-  text += s.pockets.empty() ? std::string("no pockets")
-                            : fmt::format("{} pockets (capture radius {:.4g} mm)", s.pockets.size(),
-                                     1e3 * s.pockets.front().radius);
+  if (s.pockets.empty()) {
+    text += "no pockets";
+  } else if (const auto& jaws = s.pockets.front().jaws) {
+    const physics::PocketShape& c = jaws->shape;
+    text += fmt::format("{} jawed pockets (corner mouth {:.4g} mm, facings {:.3g} deg, shelf {:.3g} mm, "
+                        "hole radius {:.4g} mm",
+                        s.pockets.size(), 1e3 * c.mouth, c.wall_angle_deg, 1e3 * c.shelf,
+                        1e3 * c.hole_radius);
+    if (s.pockets.size() == 6 && s.pockets[1].jaws)
+      text += fmt::format("; middle mouth {:.4g} mm", 1e3 * s.pockets[1].jaws->shape.mouth);
+    text += ")";
+  } else {
+    text += fmt::format("{} pockets (capture radius {:.4g} mm)", s.pockets.size(),
+                        1e3 * s.pockets.front().radius);
+  }
   text += fmt::format("; ball R {:.5g} mm, {:.4g} g\n", 1e3 * b.radius, 1e3 * b.mass);
   text += fmt::format("  cloth mu_s {:.4g}, mu_r {:.4g}, mu_sp {:.4g}, g {:.4g} m/s^2; cushion mu_w {:.4g}, e {:.4g}, "
       "h {:.5g} mm\n",
@@ -259,7 +279,10 @@ std::string pocket_name(const physics::Scene& scene, int pocket) {
                                   return a.centre.x == b.centre.x && a.centre.y == b.centre.y &&
                                          a.radius == b.radius;
                                 });
-  if (named && pocket >= 0 && pocket < 6) return kPocketNames[pocket];
+  const bool jawed = scene.pockets.size() == 6 &&
+                     std::all_of(scene.pockets.begin(), scene.pockets.end(),
+                                 [](const physics::Pocket& p) { return p.jaws.has_value(); });
+  if ((named || jawed) && pocket >= 0 && pocket < 6) return kPocketNames[pocket];
   return fmt::format("pocket {}", pocket);
 }
 
@@ -328,6 +351,16 @@ Verdict check_outcome(const Problem& problem, const physics::ShotResult& result)
   if (problem.pot) {
     const Pot& pot = *problem.pot;
     const physics::BallOutcome* ball = outcome_of(result, pot.ball);
+    if (ball != nullptr && !ball->pocketed && ball->jaw_hits > 0) {
+      int jaw_pocket = -1;
+      for (const physics::ShotEvent& e : ball->events)
+        if (e.type == physics::EventType::jaw) jaw_pocket = e.index;
+      return broken(Failure::pot_missed,
+                    fmt::format("{} rattled out of the jaws of the {} pocket (it stops at x = "
+                                "{:.4g} m, y = {:.4g} m)",
+                                pot.ball, pocket_name(problem.scene, jaw_pocket),
+                                ball->final_position.x, ball->final_position.y));
+    }
     if (ball == nullptr || !ball->pocketed)
       return broken(Failure::pot_missed,
                     fmt::format("{} does not drop (it stops at x = {:.4g} m, y = {:.4g} m)",

@@ -70,26 +70,101 @@ std::string read_name(const Mapping& root, const std::string& source) {
   return stem.empty() ? std::string("problem") : stem;
 }
 
-// table: length, width (m), pockets (standard | none), pocket_radius (m).
-void read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+// What table.pockets asks for; the jawed shapes are built once the ball's radius is
+// known (read_ball), which their checks need.
+struct PocketsSpec {
+  enum class Kind { none, standard, jawed } kind = Kind::jawed;
   double pocket_radius = kDefaultPocketRadius;
-  bool standard_pockets = true;
+  physics::PocketPreset shapes = *physics::pocket_preset("snooker");
+  std::optional<Field> field;  // table.pockets, when the file gives it
+  bool mapping = false;        // given as {corner: ..., middle: ...}
+};
+
+// One shape of table.pockets {corner: {...}, middle: {...}}: a key left out keeps the
+// snooker preset's value.
+physics::PocketShape read_pocket_shape(const Field& field, FieldLines& lines,
+                                       physics::PocketShape shape) {
+  const Mapping m(field, {"mouth", "wall_angle_deg", "shelf", "hole_radius", "point_radius"},
+                  lines);
+  if (auto f = m.find("mouth")) shape.mouth = detail::positive_number(*f);
+  if (auto f = m.find("wall_angle_deg")) shape.wall_angle_deg = detail::number(*f);
+  if (auto f = m.find("shelf")) shape.shelf = detail::number(*f);
+  if (auto f = m.find("hole_radius")) shape.hole_radius = detail::positive_number(*f);
+  if (auto f = m.find("point_radius")) shape.point_radius = detail::number(*f);
+  return shape;
+}
+
+// table: length, width (m), pockets (none | standard | snooker | pool | carom | a mapping
+// {corner: {mouth, wall_angle_deg, shelf, hole_radius, point_radius}, middle: {...}}),
+// pocket_radius (m, the standard pockets' capture radius). Without `pockets` the table
+// has the snooker preset's jawed pockets, or the standard capture circles when
+// pocket_radius is given (files that set a radius keep their circles).
+PocketsSpec read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+  PocketsSpec spec;
   if (const std::optional<Field> table = root.find("table")) {
     const Mapping m(*table, {"length", "width", "pockets", "pocket_radius"}, lines);
     if (auto f = m.find("length")) scene.length = detail::positive_number(*f);
     if (auto f = m.find("width")) scene.width = detail::positive_number(*f);
-    if (auto f = m.find("pockets")) {
-      if (detail::is_word(*f, "none"))
-        standard_pockets = false;
-      else if (!detail::is_word(*f, "standard"))
-        detail::fail(*f, "must be standard or none, got " + detail::describe_value(f->value));
+    if (auto f = m.find("pocket_radius")) {
+      spec.pocket_radius = detail::positive_number(*f);
+      spec.kind = PocketsSpec::Kind::standard;
     }
-    if (auto f = m.find("pocket_radius")) pocket_radius = detail::positive_number(*f);
+    if (auto f = m.find("pockets")) {
+      spec.field = *f;
+      if (f->value.IsMap()) {
+        const Mapping shapes(*f, {"corner", "middle"}, lines);
+        spec.kind = PocketsSpec::Kind::jawed;
+        spec.mapping = true;
+        if (auto c = shapes.find("corner"))
+          spec.shapes.corner = read_pocket_shape(*c, lines, spec.shapes.corner);
+        if (auto c = shapes.find("middle"))
+          spec.shapes.middle = read_pocket_shape(*c, lines, spec.shapes.middle);
+      } else if (detail::is_word(*f, "none") || detail::is_word(*f, "carom")) {
+        spec.kind = PocketsSpec::Kind::none;
+      } else if (detail::is_word(*f, "standard")) {
+        spec.kind = PocketsSpec::Kind::standard;
+      } else if (detail::is_word(*f, "snooker") || detail::is_word(*f, "pool")) {
+        spec.kind = PocketsSpec::Kind::jawed;
+        spec.shapes = *physics::pocket_preset(detail::text(*f));
+      } else {
+        detail::fail(*f, "must be none, standard, snooker, pool, carom or a mapping {corner: "
+                         "{...}, middle: {...}}, got " +
+                             detail::describe_value(f->value));
+      }
+    }
   }
+  return spec;
+}
+
+// The pockets table.pockets asked for, their shapes checked against the ball.
+void build_pockets(const PocketsSpec& spec, const FieldLines& lines, physics::Scene& scene) {
   scene.pockets.clear();
   // Four corners and the middles of the long cushions y = 0 and y = width (kPocketNames).
-  if (standard_pockets)
-    scene.pockets = physics::standard_pockets(scene.length, scene.width, pocket_radius);
+  switch (spec.kind) {
+    case PocketsSpec::Kind::none: return;
+    case PocketsSpec::Kind::standard:
+      scene.pockets = physics::standard_pockets(scene.length, scene.width, spec.pocket_radius);
+      return;
+    case PocketsSpec::Kind::jawed: break;
+  }
+  const double r = scene.radius();
+  // A ball too big for the table is that rule's error (Scene::validate), not the pockets'.
+  if (!(scene.length > 2.0 * r && scene.width > 2.0 * r)) return;
+  for (const auto& [name, shape] :
+       {std::pair{"corner", spec.shapes.corner}, std::pair{"middle", spec.shapes.middle}}) {
+    const physics::Validation e = shape.validate(r);
+    if (!e) continue;
+    const std::string member = e->field.text();
+    if (spec.mapping) {
+      const std::string path = "table.pockets." + std::string(name) + "." + member;
+      throw FieldError{line_in_file(path, lines, spec.field->line), path, e->rule_text()};
+    }
+    throw detail::FieldError{spec.field ? spec.field->line : 0, "table.pockets",
+                             fmt::format("the {} pockets' {} {} (ball radius {:.4g} m)", name,
+                                         member, e->rule_text(), r)};
+  }
+  scene.pockets =
+      physics::jawed_pockets(scene.length, scene.width, spec.shapes.corner, spec.shapes.middle);
 }
 
 // ball: radius (m), mass (kg). Keeps the rest of the cushion parameters at their defaults.
@@ -329,8 +404,9 @@ Problem read_problem(const Field& document, const std::string& source) {
   problem.name = read_name(root, source);
 
   physics::Scene& scene = problem.scene;
-  read_table(root, lines, scene);
+  const PocketsSpec pockets = read_table(root, lines, scene);
   read_ball(root, lines, scene);
+  build_pockets(pockets, lines, scene);
   read_physics(root, lines, scene);
   read_cue(root, lines, scene);
   read_obstacles(root, scene, lines);

@@ -185,17 +185,41 @@ TEST(ShippedProblems, BlockedRouteHasNoClearStraightPath) {
 
 TEST(ProblemDefaults, OmittedFieldsTakeTheirDocumentedDefaults) {
   const Problem p = parse_ok("cue_ball: [0.8, 0.5]\ntarget: [2.6, 1.2]\n");
-  const physics::Scene snooker = physics::snooker_scene();
+  const physics::PocketPreset preset = *physics::pocket_preset("snooker");
+  const std::vector<physics::Pocket> jawed =
+      physics::jawed_pockets(3.569, 1.778, preset.corner, preset.middle);
   EXPECT_EQ(p.name, "test");  // stem of the source name
   EXPECT_EQ(p.source, "test.yaml");
   EXPECT_DOUBLE_EQ(p.scene.length, 3.569);
   EXPECT_DOUBLE_EQ(p.scene.width, 1.778);
-  ASSERT_EQ(p.scene.pockets.size(), snooker.pockets.size());
-  for (std::size_t i = 0; i < snooker.pockets.size(); ++i) {
-    EXPECT_DOUBLE_EQ(p.scene.pockets[i].centre.x, snooker.pockets[i].centre.x) << i;
-    EXPECT_DOUBLE_EQ(p.scene.pockets[i].centre.y, snooker.pockets[i].centre.y) << i;
-    EXPECT_DOUBLE_EQ(p.scene.pockets[i].radius, kDefaultPocketRadius) << i;
+  // Without table.pockets: the snooker preset's jawed pockets.
+  ASSERT_EQ(p.scene.pockets.size(), jawed.size());
+  for (std::size_t i = 0; i < jawed.size(); ++i) {
+    EXPECT_DOUBLE_EQ(p.scene.pockets[i].centre.x, jawed[i].centre.x) << i;
+    EXPECT_DOUBLE_EQ(p.scene.pockets[i].centre.y, jawed[i].centre.y) << i;
+    ASSERT_TRUE(p.scene.pockets[i].jaws.has_value()) << i;
+    EXPECT_DOUBLE_EQ(p.scene.pockets[i].jaws->shape.mouth, i == 1 || i == 4 ? preset.middle.mouth
+                                                                            : preset.corner.mouth);
   }
+  // With pocket_radius alone: the standard capture circles, as before.
+  const Problem circles = parse_ok("table: {pocket_radius: 0.045}\ncue_ball: [0.8, 0.5]\ntarget: [2.6, 1.2]\n");
+  const physics::Scene snooker = physics::snooker_scene();
+  ASSERT_EQ(circles.scene.pockets.size(), snooker.pockets.size());
+  for (std::size_t i = 0; i < snooker.pockets.size(); ++i) {
+    EXPECT_DOUBLE_EQ(circles.scene.pockets[i].centre.x, snooker.pockets[i].centre.x) << i;
+    EXPECT_DOUBLE_EQ(circles.scene.pockets[i].centre.y, snooker.pockets[i].centre.y) << i;
+    EXPECT_DOUBLE_EQ(circles.scene.pockets[i].radius, kDefaultPocketRadius) << i;
+    EXPECT_FALSE(circles.scene.pockets[i].jaws.has_value()) << i;
+  }
+  // Presets and a mapping whose missing keys take the snooker preset's values.
+  const Problem pool = parse_ok("table: {pockets: pool}\ncue_ball: [0.8, 0.5]\ntarget: [2.6, 1.2]\n");
+  EXPECT_DOUBLE_EQ(pool.scene.pockets[0].jaws->shape.mouth, physics::pocket_preset("pool")->corner.mouth);
+  EXPECT_TRUE(parse_ok("table: {pockets: carom}\ncue_ball: [0.8, 0.5]\ntarget: [2.6, 1.2]\n").scene.pockets.empty());
+  const Problem mixed = parse_ok(
+      "table: {pockets: {corner: {mouth: 0.09}}}\ncue_ball: [0.8, 0.5]\ntarget: [2.6, 1.2]\n");
+  EXPECT_DOUBLE_EQ(mixed.scene.pockets[0].jaws->shape.mouth, 0.09);
+  EXPECT_DOUBLE_EQ(mixed.scene.pockets[0].jaws->shape.shelf, preset.corner.shelf);
+  EXPECT_DOUBLE_EQ(mixed.scene.pockets[1].jaws->shape.mouth, preset.middle.mouth);
   const physics::CushionParams paper;
   EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.radius, paper.radius);
   EXPECT_DOUBLE_EQ(p.scene.ball_and_cushion.mass, paper.mass);
@@ -524,7 +548,26 @@ const BadInput kBadInputs[] = {
     {"NegativePocketRadius", "table: {pocket_radius: -0.04}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
      "table.pocket_radius", "positive"},
     {"UnknownPocketsWord", "table:\n  pockets: six\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
-     "table.pockets", "standard or none"},
+     "table.pockets", "must be none, standard, snooker, pool, carom or a mapping"},
+    {"NarrowCornerMouth", "table:\n  pockets:\n    corner: {mouth: 0.05}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     3, "table.pockets.corner.mouth", "0.05 m is narrower than a ball (0.0525 m)"},
+    {"NegativeMiddleShelf",
+     "table:\n  pockets:\n    middle:\n      shelf: -0.01\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 4,
+     "table.pockets.middle.shelf", "must not be negative"},
+    {"CrossingFacings", "table:\n  pockets: {corner: {wall_angle_deg: 40}}\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
+     2, "table.pockets.corner.wall_angle_deg", "facings cross"},
+    {"NegativePointRadius",
+     "table:\n  pockets: {middle: {point_radius: -0.001}}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "table.pockets.middle.point_radius", "must not be negative"},
+    {"HoleTooSmall",
+     "table:\n  pockets: {corner: {hole_radius: 0.03, wall_angle_deg: 0}}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "table.pockets.corner.hole_radius", "does not close the channel"},
+    {"UnknownPocketShapeKey",
+     "table:\n  pockets: {corner: {mouth_width: 0.09}}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+     "table.pockets.corner.mouth_width", "mouth"},
+    {"PoolPresetTooSmallForBall",
+     "table: {pockets: pool}\nball: {radius: 0.06}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
+     "table.pockets", "narrower than a ball"},
     {"ZeroSlidingFriction", "physics:\n  mu_slide: 0\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
      "physics.mu_slide", "positive"},
     {"RestitutionAboveOne",
@@ -553,9 +596,9 @@ const BadInput kBadInputs[] = {
      "obstacles:\n  - [1.0, 1.0]\n  - [1.03, 1.0]\ncue_ball: [0.5, 0.5]\n"
      "target: [2, 1]\n",
      3, "obstacles[1]", "overlaps obstacles[0]"},
-    {"TargetInPocket", "cue_ball: [1, 1]\ntarget: [0.03, 0.03]\n", 2, "target",
+    {"TargetInPocket", "cue_ball: [1, 1]\ntarget: [0.0, 0.0]\n", 2, "target",
      "lies inside the bottom_left pocket"},
-    {"CueBallInMiddlePocket", "cue_ball: [1.7845, 1.75]\ntarget: [1, 1]\n", 1, "cue_ball",
+    {"CueBallInMiddlePocket", "cue_ball: [1.7845, 1.79]\ntarget: [1, 1]\n", 1, "cue_ball",
      "lies inside the top_middle pocket"},
     {"PointOfThree", "cue_ball: [1, 1, 1]\ntarget: [2, 1]\n", 1, "cue_ball", "got 3 elements"},
     {"PointOfOne", "cue_ball: [1, 1]\ntarget: [2]\n", 2, "target", "got 1 element"},
@@ -622,7 +665,7 @@ const BadInput kBadInputs[] = {
      "obstacles: [[1.5, 0.9]]\nballs:\n  red: [1.52, 0.9]\n"
      "cue_ball: [1, 1]\ntarget: [2, 1]\n",
      3, "balls.red", "overlaps obstacles[0]"},
-    {"BallInMiddlePocket", "balls:\n  red: [1.7845, 0.03]\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
+    {"BallInMiddlePocket", "balls:\n  red: [1.7845, -0.01]\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
      "balls.red", "lies inside the bottom_middle pocket"},
     {"BallNamedCue", "balls:\n  cue: [1.5, 0.9]\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 2,
      "balls.cue", "names the cue ball"},

@@ -74,6 +74,26 @@ export class TableView {
     this.drawMarkings(w, s, band, cushion);
     for (const p of s.pockets) {
       const g = el("g", {}, w);
+      const j = p.jaws;
+      if (j) {
+        // The jaws as they are: the cushion cut back along the facings from the rounded
+        // points, the hole beyond the shelf, the points and facings outlined.
+        const far = 2 * band;
+        const out = (f) => {
+          const dx = f.end[0] - f.start[0], dy = f.end[1] - f.start[1], n = Math.hypot(dx, dy) || 1;
+          return [f.end[0] + far * dx / n, f.end[1] + far * dy / n];
+        };
+        const pts = [j.nose_ends[0], j.corners[0], out(j.facings[0]), out(j.facings[1]), j.corners[1], j.nose_ends[1]];
+        el("path", { d: "M" + pts.map((q) => `${q[0]} ${q[1]}`).join(" L") + " Z", fill: CLOTH[kind] }, g);
+        el("circle", { cx: j.hole_centre[0], cy: j.hole_centre[1], r: j.hole_radius, fill: "#050505" }, g);
+        const edge = { stroke: "#1d3b2a", "stroke-width": 0.003, fill: "none" };
+        for (const f of j.facings) el("line", { x1: f.start[0], y1: f.start[1], x2: f.end[0], y2: f.end[1], ...edge }, g);
+        for (const c of j.point_centres) el("circle", { cx: c[0], cy: c[1], r: Math.max(j.point_radius, 0.001), ...edge }, g);
+        el("title", {}, g).textContent =
+          `${p.name} pocket: mouth ${mm(j.mouth)} mm, facings at ${j.wall_angle_deg} deg, shelf ${mm(j.shelf)} mm; ` +
+          `a ball whose centre enters the ${mm(j.hole_radius)} mm hole drops`;
+        continue;
+      }
       el("circle", { cx: p.centre[0], cy: p.centre[1], r: p.radius, fill: "#050505" }, g);
       el("title", {}, g).textContent =
         `${p.name} pocket: a ball whose centre comes within ${mm(p.radius)} mm of (${metres(p.centre[0])}, ${metres(p.centre[1])}) m drops`;

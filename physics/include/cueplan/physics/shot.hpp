@@ -20,6 +20,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cueplan/physics/ball_collision.hpp"
@@ -75,9 +76,62 @@ std::optional<double> end_mass_for_squirt(double ball_mass, double squirt_deg);
 // pocket's point drops.
 inline constexpr double kDefaultPocketRadius = 0.045;
 
+// The shape of a jawed pocket (PHYSICS.md, "Jawed pockets"); metres and degrees.
+//
+// The mouth is measured between the two UNROUNDED nose corners: the points where each
+// cushion's nose line meets its facing line (as WPA/BCA measure it, "from tip to tip of
+// the opposing cushion noses where direction changes into the pocket"). The rounding of
+// radius point_radius is tangent to both lines, so the rounded noses stand slightly
+// back from those corners. Each facing leaves its corner at wall_angle_deg to the
+// pocket's centre line, turned toward the centre line: the facings converge into the
+// pocket (the throat is narrower than the mouth; the pocket opens outward toward the
+// table), as on WPA tables, whose "pocket angle" of 142 deg (corner) between the cushion
+// nose and the facing is a wall angle of 45 - 38 = 7 deg, and 104 deg (side) one of
+// 90 - 76 = 14 deg.
+struct PocketShape {
+  double mouth = 0.0;           // m, between the unrounded nose corners
+  double wall_angle_deg = 0.0;  // deg, each facing to the centre line (converging)
+  double shelf = 0.0;           // m, from the mouth line to the hole's edge, on the centre line
+  double hole_radius = 0.0;     // m
+  double point_radius = 0.0;    // m, rounding of each nose
+
+  // Empty when a ball of `ball_radius` can enter and drop; otherwise the first broken
+  // rule, fields named as these members: a mouth narrower than a ball (2R), a negative
+  // shelf, a wall angle outside [0, 90), facings that cross before the hole, a negative
+  // point radius, a hole too small to close the channel between the facings.
+  Validation validate(double ball_radius) const;
+};
+
+// A jawed pocket's geometry in the table frame, derived from its shape by
+// jawed_pockets(). "Left" and "right" are as seen from the table looking into the
+// pocket along `inward`. The parts a ball can strike are numbered
+// 0 left point, 1 left facing, 2 right facing, 3 right point (ShotEvent::cushion of a
+// jaw event).
+struct PocketJaws {
+  PocketShape shape;
+  Vec2 inward;             // unit, the centre line's direction into the pocket
+  Vec2 mouth_centre;       // m, middle of the mouth line
+  Vec2 corner[2];          // m, the unrounded nose corners: [0] left, [1] right
+  Vec2 point_centre[2];    // m, centres of the rounded noses
+  Vec2 facing_start[2];    // m, where each facing leaves its point's rounding
+  Vec2 facing_dir[2];      // unit, along each facing into the pocket
+  double facing_length[2] = {0.0, 0.0};  // m, from facing_start to the hole's centre depth
+  Vec2 hole_centre;        // m
+  int cushion[2] = {-1, -1};      // the cushion (ShotEvent::cushion numbering) each point ends
+  Vec2 nose_tangent[2];    // m, where each cushion's straight nose ends at the point's rounding
+};
+
+// A pocket. Without jaws it is a capture circle (the `standard` pockets): a ball whose
+// centre enters the circle (centre, radius) is pocketed. With jaws, a ball is pocketed
+// when its centre enters the hole and meets the points and facings before that;
+// `centre` is then the middle of the mouth line (where the planner aims an object ball)
+// and `radius` the effective capture radius the planner's heuristics use: half the
+// mouth, so that the circle spans the mouth from corner to corner (generous by about a
+// ball's radius, the right side to err on for screens that rule pots out).
 struct Pocket {
   Vec2 centre;          // m, table frame
-  double radius = 0.0;  // m, a ball whose centre enters this circle is pocketed
+  double radius = 0.0;  // m, capture circle (no jaws) or effective capture radius (jaws)
+  std::optional<PocketJaws> jaws;
 };
 
 // An object ball, at rest where the shot starts; the same radius and mass as the cue ball.
@@ -139,6 +193,17 @@ Scene snooker_scene();
 // The six standard pockets of a table: the corners and the middles of the long cushions
 // y = 0 and y = width, in snooker_scene()'s order.
 std::vector<Pocket> standard_pockets(double length, double width, double radius);
+// The six jawed pockets of a table, in standard_pockets' order: the corners on the
+// corner's bisector, the middles on the long cushions.
+std::vector<Pocket> jawed_pockets(double length, double width, const PocketShape& corner,
+                                  const PocketShape& middle);
+// The corner and middle shapes of a named preset: "snooker" (WPBSA template) or "pool"
+// (WPA specification); none for any other name (docs/pockets.md cites the numbers).
+struct PocketPreset {
+  PocketShape corner;
+  PocketShape middle;
+};
+std::optional<PocketPreset> pocket_preset(std::string_view name);
 
 // A scene checked once, for the simulations that follow (in the spirit of MuJoCo's
 // mjModel): simulate() takes it and checks nothing about the scene again.
@@ -190,6 +255,10 @@ enum class EventType {
   obstacle,       // contact with an obstacle ball: the shot ends
   rest,           // the ball stops
   ball_contact,   // contact with another ball, resolved by the ball-ball collision model
+  jaw,            // contact with a jawed pocket's point or facing, resolved by the cushion
+                  // model in the contact's frame: index = the pocket, cushion = the part
+                  // (0 left point, 1 left facing, 2 right facing, 3 right point, seen
+                  // from the table); not counted in cushion_hits
 };
 const char* to_string(EventType type);
 
@@ -203,8 +272,9 @@ struct ShotEvent {
   Vec2 position;      // m
   Vec2 velocity;      // m/s just after the event
   Vec3 spin;          // rad/s just after the event
-  int cushion = -1;   // 0: y = 0, 1: x = length, 2: y = width, 3: x = 0 (cushion events)
-  int index = -1;     // pocket or obstacle index (pocket and obstacle events)
+  int cushion = -1;   // 0: y = 0, 1: x = length, 2: y = width, 3: x = 0 (cushion events);
+                      // jaw events: the part of the pocket (see EventType::jaw)
+  int index = -1;     // pocket or obstacle index (pocket, jaw and obstacle events)
   double normal_speed = 0.0;  // m/s into the cushion (cushion events); along the line
                               // of centres, how fast the balls approached (ball contacts)
   int ball = 0;       // whose event: index into ShotResult::balls (0: the cue ball)
@@ -266,8 +336,9 @@ struct BallOutcome {
   Vec2 final_position;  // m, at rest, where it entered a pocket, or where the shot ended
   bool pocketed = false;
   int pocket = -1;      // when pocketed: index into Scene::pockets
-  int cushion_hits = 0;
-  double max_cushion_normal_speed = 0.0;  // m/s
+  int cushion_hits = 0;  // rails only (jaw contacts are not counted)
+  int jaw_hits = 0;      // contacts with pocket points and facings
+  double max_cushion_normal_speed = 0.0;  // m/s, rails and jaws
   std::vector<ShotEvent> events;  // its own, in time order (none for a ball never struck)
   std::vector<PathSegment> path;  // its path, when record_path
 };

@@ -182,6 +182,11 @@ struct PotReport {
   double margin_m = 0.0;     // the capture radius less the pocket centre's distance from
                              // the ball's line: how far inside the circle it passes
   double aim_margin_deg = 0.0;  // the least aim error, either way, that would miss it
+  // A jawed pocket: how far the ball's line clears the nearer point (its rounding grown
+  // by the contact offset R cos(theta), as the simulator meets it; < 0: the line meets
+  // that point), and which point that is ("left" or "right", seen from the table).
+  std::optional<double> jaw_clearance_m;
+  std::string near_jaw;
 
   bool operator==(const PotReport&) const = default;
 };
