@@ -126,8 +126,9 @@ std::string read_planner_options(const PlannerArgs& args, int threads,
   if (!std::isfinite(args.max_time_s) || !(args.max_time_s > 0.0))
     return "--max-time must be positive and finite (s), got " + number(args.max_time_s);
   if (args.starts < 1) return "--starts must be at least 1, got " + std::to_string(args.starts);
-  if (!std::isfinite(args.noise) || args.noise < 0.0)
-    return "--noise must be finite and not negative, got " + number(args.noise);
+  // Ten times a club player's scatter already sends strokes past what a cue can give.
+  if (!std::isfinite(args.noise) || args.noise < 0.0 || args.noise > 10.0)
+    return "--noise must be 0 to 10 (times a club player's scatter), got " + number(args.noise);
   if (args.samples < 0)
     return "--samples must not be negative, got " + std::to_string(args.samples);
   if (args.robust && args.samples < 1)

@@ -11,10 +11,12 @@
 #include <memory>
 #include <span>
 #include <utility>
+#include <vector>
 
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/spin_map.hpp"
+#include "cueplan/problems/stroke_ranges.hpp"
 #include "field_names.hpp"
 #include "impact_setup.hpp"
 #include "planner_flags.hpp"
@@ -91,11 +93,25 @@ std::string dotted(const std::string& prefix, const std::string& key) {
   return prefix.empty() ? key : prefix + "." + key;
 }
 
-// The body as a JSON object.
+// The body as a JSON object. A number beyond a double's range (1e400) is refused naming
+// the field it was given for, as any other bad value.
 ordered_json parse_body(std::string_view body) {
   ordered_json j;
+  std::vector<std::string> path;  // the keys down to the value being read
+  std::string last_key;
+  const auto track = [&](int /*depth*/, ordered_json::parse_event_t event, ordered_json& parsed) {
+    using E = ordered_json::parse_event_t;
+    if (event == E::key) last_key = parsed.get<std::string>();
+    if (event == E::object_start) {
+      path.push_back(last_key);
+      last_key.clear();
+    }
+    if (event == E::object_end && !path.empty()) path.pop_back();
+    if (event == E::value || event == E::object_end || event == E::array_end) last_key.clear();
+    return true;
+  };
   try {
-    j = ordered_json::parse(body);
+    j = ordered_json::parse(body, track);
   } catch (const ordered_json::parse_error& e) {
     std::string what = e.what();
     // "[json.exception.parse_error.101] parse error at line 1, ..." without the tag.
@@ -103,6 +119,17 @@ ordered_json parse_body(std::string_view body) {
                                              tag != std::string::npos)
       what.erase(0, tag + 2);
     throw bad("", "the request body is not JSON: " + what);
+  } catch (const ordered_json::exception& e) {
+    // out_of_range.406: "number overflow parsing '1e400'".
+    std::string field;
+    for (const std::string& key : path)
+      if (!key.empty()) field += (field.empty() ? "" : ".") + key;
+    if (!last_key.empty()) field += (field.empty() ? "" : ".") + last_key;
+    std::string what = e.what();
+    if (const size_t tag = what.find("] "); tag != std::string::npos) what.erase(0, tag + 2);
+    throw bad(field, (field.empty() ? std::string("a number") : field) +
+                         " is out of range (" + what + "); numbers must lie within a double's "
+                         "range and mean something physical");
   }
   if (!j.is_object())
     throw bad("", "the request body must be a JSON object, such as {\"problem\": {...}}");
@@ -457,6 +484,7 @@ ApiReply Api::simulate(std::string_view body) const {
         if (why.rfind(std::string(name) + " ", 0) == 0) field = name;
       throw bad(field, why);
     }
+    const std::vector<std::string> warnings = shot_warnings(shot, kStrokeNames);
     const prob::Problem problem = read_problem(request);
 
     std::shared_ptr<const phys::ImpactTable> table;
@@ -467,6 +495,7 @@ ApiReply Api::simulate(std::string_view body) const {
       throw library_error(result.error, result.message);
     ApiReply reply;
     reply.body = simulate_json(problem, shot, simulation, result, "");
+    if (!warnings.empty()) reply.body["warnings"] = warnings;
     return reply;
   });
 }
@@ -488,10 +517,9 @@ ApiReply Api::spinmap(std::string_view body) const {
     if (stroke_given) {
       v = read_number(*speed, "speed", "m/s");
       aim_deg = read_number(*aim, "aim_deg", "deg");
-      if (!std::isfinite(v) || !(v > 0.0))
-        throw bad("speed", "speed must be finite and above 0 (m/s), got " + speed->dump());
-      if (!std::isfinite(aim_deg))
-        throw bad("aim_deg", "aim_deg must be finite (deg), got " + aim->dump());
+      const prob::StrokeRangeCheck ranges = prob::check_stroke_ranges(
+          phys::Shot{v, aim_deg, 0.0, 0.0}, {"speed", "aim_deg", nullptr, nullptr, nullptr});
+      if (!ranges.ok()) throw bad(ranges.field, ranges.error);
     }
     int grid = kDefaultGrid;
     if (const ordered_json* g = member(request, "grid")) {

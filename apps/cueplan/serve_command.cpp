@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <mutex>
 #include <ostream>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "cueplan/physics/cushion_impact.hpp"
@@ -22,6 +24,23 @@ namespace cueplan::cli {
 namespace {
 
 constexpr const char* kCommandName = "cueplan serve";
+
+// "20", "20s" or "2.5 s" as seconds; NaN for anything else.
+double seconds(const std::string& text) {
+  std::string t = text;
+  while (!t.empty() && t.back() == ' ') t.pop_back();
+  if (!t.empty() && t.back() == 's') t.pop_back();
+  while (!t.empty() && t.back() == ' ') t.pop_back();
+  if (t.empty()) return NAN;
+  size_t used = 0;
+  double value = NAN;
+  try {
+    value = std::stod(t, &used);
+  } catch (const std::exception&) {
+    return NAN;
+  }
+  return used == t.size() && std::isfinite(value) ? value : NAN;
+}
 
 }  // namespace
 
@@ -41,7 +60,27 @@ ServeCommand::ServeCommand(CLI::App& parent) {
       ->capture_default_str();
   c.add_option("--threads", args_.threads,
                "Requests computed at once (the worker pool; each request runs on one thread); "
-               "0: one per core. A request that finds every worker busy is answered 503 at once")
+               "0: one per core. A request that finds every worker busy waits in the queue")
+      ->type_name("N")
+      ->capture_default_str();
+  c.add_option("--queue", args_.queue,
+               "Requests that may wait for a worker, first come first served, 0 to 10000. A "
+               "request is answered 503 with Retry-After only when the queue is full or its "
+               "expected wait exceeds --wait-budget")
+      ->type_name("N")
+      ->capture_default_str();
+  c.add_option("--wait-budget", args_.wait_budget,
+               "The longest a request waits for a worker, in seconds (20 or 20s), 0 to 600")
+      ->type_name("S")
+      ->capture_default_str();
+  c.add_option("--request-deadline", args_.request_deadline,
+               "A request's headers and body must arrive within this many seconds (10 or 10s), "
+               "0.1 to 600; a slower one is answered 408 and its connection closed")
+      ->type_name("S")
+      ->capture_default_str();
+  c.add_option("--client-connections", args_.client_connections,
+               "Connections one client address may hold open at once (a browser uses up to 6); "
+               "0: no limit. Raise it when a class reaches the server through one address (NAT)")
       ->type_name("N")
       ->capture_default_str();
   c.add_option("--method", args_.method,
@@ -81,6 +120,16 @@ std::string ServeCommand::check() const {
     return "--port must be 0 to 65535, got " + std::to_string(args_.port);
   if (args_.threads < 0)
     return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
+  if (args_.queue < 0 || args_.queue > 10000)
+    return "--queue must be 0 to 10000, got " + std::to_string(args_.queue);
+  if (const double s = seconds(args_.wait_budget); !(s >= 0.0 && s <= 600.0))
+    return "--wait-budget must be 0 to 600 seconds (20 or 20s), got '" + args_.wait_budget + "'";
+  if (const double s = seconds(args_.request_deadline); !(s >= 0.1 && s <= 600.0))
+    return "--request-deadline must be 0.1 to 600 seconds (10 or 10s), got '" +
+           args_.request_deadline + "'";
+  if (args_.client_connections < 0)
+    return "--client-connections must be 0 (no limit) or more, got " +
+           std::to_string(args_.client_connections);
   if (args_.method != "table" && args_.method != "exact")
     return "--method must be table or exact, got '" + args_.method + "'";
   if (!std::isfinite(args_.max_time_s) || !(args_.max_time_s > 0.0))
@@ -117,6 +166,10 @@ int ServeCommand::run(std::ostream& out, std::ostream& err) const {
   options.host = args_.host;
   options.port = args_.port;
   options.workers = args_.threads;
+  options.queue = args_.queue;
+  options.wait_budget_s = seconds(args_.wait_budget);
+  options.request_deadline_s = seconds(args_.request_deadline);
+  options.client_connections = args_.client_connections;
   options.default_method = args_.method;
   options.limits.max_time_s = args_.max_time_s;
   options.limits.max_grid = args_.max_grid;
@@ -137,8 +190,10 @@ int ServeCommand::run(std::ostream& out, std::ostream& err) const {
         << std::endl;
     if (!is_loopback(args_.host))
       note("listening on " + args_.host + ": other machines can reach this server");
-    note(fmt::format("{} worker{}; searches use the {} impact method{}", server.workers(),
-                     server.workers() == 1 ? "" : "s", args_.method,
+    note(fmt::format("{} worker{} and a queue of {} (wait budget {:g} s); searches use the {} "
+                     "impact method{}",
+                     server.workers(), server.workers() == 1 ? "" : "s", args_.queue,
+                     seconds(args_.wait_budget), args_.method,
                      args_.method == "table"
                          ? " (tables load or build in the background; /api/health tells when "
                            "they are ready)"

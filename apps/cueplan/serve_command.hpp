@@ -18,6 +18,10 @@ struct ServeArgs {
   std::string host = "127.0.0.1";
   int port = 8080;   // 0: any free port
   int threads = 0;   // requests computed at once; 0: one per core
+  int queue = 64;    // requests that may wait for a worker
+  std::string wait_budget = "20s";       // the longest a request waits for a worker
+  std::string request_deadline = "10s";  // to receive a request's headers and body
+  int client_connections = 64;           // open connections per client address; 0: no limit
   std::string method = "table";  // the impact method of searches that name none
   std::string table_cache;       // empty: default_table_cache_dir()
   double max_time_s = 20.0;      // the longest planner search a request may ask for (s)

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "batch_csv.hpp"
 #include "cueplan/physics/shot.hpp"
@@ -42,9 +43,13 @@ inline constexpr ShotNames kShotFlagNames = {"--speed", "--aim", "--topspin-k", 
 inline constexpr ShotNames kShotColumnNames = {"speed", "aim_deg", "topspin_k", "sidespin_k",
                                                "elevation_deg"};
 
-// Empty when the shot can be simulated (speed > 0, everything finite); otherwise one
-// line naming the input.
+// Empty when the shot can be simulated and a cue can play it (speed > 0 and at most
+// problems::kMaxStrokeSpeed, the tip within the miscue limit, the aim within a turn,
+// everything finite: problems/stroke_ranges.hpp); otherwise one line naming the input.
 std::string check_shot_inputs(const physics::Shot& shot, const ShotNames& names);
+// What is implausible about a shot that may be played (faster than a break shot), one
+// line each naming the input.
+std::vector<std::string> shot_warnings(const physics::Shot& shot, const ShotNames& names);
 
 // The batch of shots: each block's rows simulated on the problem's scene (from
 // `threads` threads, 0: one per core); rows without an outcome (parse_error,

@@ -655,8 +655,8 @@ std::string SimulateCommand::read_options(phys::SimulationOptions* options) cons
     return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
   if (args_.samples < 0)
     return "--samples must not be negative, got " + std::to_string(args_.samples);
-  if (!std::isfinite(args_.noise) || args_.noise < 0.0)
-    return "--noise must be finite and not negative, got " + number(args_.noise);
+  if (!std::isfinite(args_.noise) || args_.noise < 0.0 || args_.noise > 10.0)
+    return "--noise must be 0 to 10 (times a club player's scatter), got " + number(args_.noise);
   if (given("--trace") && (!std::isfinite(args_.trace) || !(args_.trace > 0.0)))
     return "--trace must be positive and finite (s between samples), got " + number(args_.trace);
   return {};
@@ -730,6 +730,8 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
                              out, err);
   }
 
+  for (const std::string& warning : shot_warnings(shot, kShotFlagNames))
+    err << kCommandName << ": warning: " << warning << '\n';
   const phys::ShotResult result = phys::simulate(problem.scene, problem.cue_ball, shot, options);
   if (result.status == phys::ShotStatus::invalid_input) return usage(result.message);
 

@@ -255,6 +255,10 @@ ordered_json spinmap_json(const prob::Problem& problem, const plan::SpinMap& map
                    {"pocketed", c.of(SpinCellKind::pocketed)},
                    {"hit_obstacle", c.of(SpinCellKind::obstacle)},
                    {"no_outcome", c.of(SpinCellKind::no_result)}};
+  if (problem.pot) {
+    j["outcomes"]["no_pot"] = c.of(SpinCellKind::no_pot);
+    j["pot_ball"] = problem.pot->ball;
+  }
   j["target"] = {problem.target.x, problem.target.y};
   j["tolerance"] = problem.tolerance;
   j["method"] = phys::to_string(phys::chosen_impact_method(problem.scene, simulation));

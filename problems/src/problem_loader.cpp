@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cueplan/problems/problem.hpp"
+#include "cueplan/problems/stroke_ranges.hpp"
 #include "yaml_fields.hpp"
 
 namespace cueplan::problems {
@@ -340,9 +341,18 @@ Limits read_limits(const Mapping& root, FieldLines& lines) {
     if (!(limits.speed_min < limits.speed_max))
       detail::fail(*speed, "min must be below max, got [" + bounds[0].value.Scalar() + ", " +
                                bounds[1].value.Scalar() + "]");
+    // What no cue can give is refused here, as in a stroke (stroke_ranges.hpp).
+    for (size_t i : {size_t{0}, size_t{1}})
+      if (const StrokeRangeCheck c =
+              check_speed_range(i == 0 ? limits.speed_min : limits.speed_max, "-");
+          !c.ok())
+        detail::fail(bounds[i], c.error.substr(2));
   }
-  if (const std::optional<Field> spin = m.find("spin"))
+  if (const std::optional<Field> spin = m.find("spin")) {
     limits.spin_max = detail::positive_number(*spin);
+    if (const StrokeRangeCheck c = check_spin_range(limits.spin_max, "-"); !c.ok())
+      detail::fail(*spin, c.error.substr(2));
+  }
 
   if (const std::optional<Field> aim = m.find("aim_deg")) {
     if (detail::is_word(*aim, "free")) {

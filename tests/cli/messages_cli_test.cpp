@@ -158,7 +158,7 @@ const FlagCase kFlagCases[] = {
     {"SolveEvaluations", "solve PROBLEM --max-evaluations 5",
      "cueplan solve: --max-evaluations must be at least 10, got 5"},
     {"SolveNoise", "solve PROBLEM --noise -1",
-     "cueplan solve: --noise must be finite and not negative, got -1"},
+     "cueplan solve: --noise must be 0 to 10 (times a club player's scatter), got -1"},
     {"RouteStrokes", "route PROBLEM --max-strokes 0",
      "cueplan route: --max-strokes must lie in [1, 100], got 0"},
     {"RouteSteering", "route PROBLEM --steer-evaluations 2",

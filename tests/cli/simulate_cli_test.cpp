@@ -424,9 +424,9 @@ TEST(Simulate, EventLimitStopsWithExitOne) {
 // A shot outside the problem's limits is simulated and said to be outside them.
 TEST(Simulate, ShotOutsideTheProblemLimitsIsSimulatedAndNamed) {
   const ProcessResult run = cueplan("simulate '" + problem_path("one_rail_position") +
-                                    "' --speed 1 --aim 30 --topspin-k 1.2 --sidespin-k 0.9");
+                                    "' --speed 6 --aim 30 --topspin-k 0.6 --sidespin-k 0.3");
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.out.find("outside the problem's limits: spin"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("outside the problem's limits: speed"), std::string::npos) << run.out;
 }
 
 // ---------------------------------------------------------------------------

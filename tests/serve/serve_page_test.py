@@ -12,6 +12,13 @@ drags the target with the mouse; moves the cue ball with the keyboard into a poc
 checks that the server's error is shown with its field. Writes screenshots of the plan,
 the spin map and the error to --out.
 
+Replays the plan's animation and checks that the cue ball moves along the drawn path to
+its end, at the speed chosen; checks that each ball's path has its own colour (sliding
+dashed) and the ghost ball is drawn; opens a shared link and checks that it restores the
+example, the balls, the stroke and the options; and loads the link at a phone's size
+(390 x 844) and a tablet's (768 x 1024): no sideways scrolling, the table full width above
+the controls on the phone.
+
 Exit 0 on success, 1 on a failure, 77 (skipped) when no browser or driver is installed.
 """
 import argparse
@@ -302,15 +309,150 @@ def check_pot_example(driver, shots):
         "const w = document.getElementById('stroke-words');"
         "return !document.getElementById('result').hidden && w &&"
         " w.textContent.startsWith('Your stroke') ? w.textContent : null;"))
-    if "strikes the red first" not in text or "the blue in the top right pocket" not in text:
+    if "strikes the red first" not in text or "the blue in the top-right corner" not in text:
         fail(f"the outcome does not say the red was struck and the blue potted: {text!r}")
     if "1.7 mm from the target" not in text:
         fail(f"the plant's stroke should stop 1.7 mm from the target, as the command line says: {text!r}")
     paths = driver.find_elements(By.CSS_SELECTOR, "#table g.path.main")
     if len(paths) != 3:
         fail(f"{len(paths)} paths drawn for a stroke that moves three balls")
+    # One colour per ball: the cue ball's path white, the red's red, the blue's blue;
+    # sliding dashed, rolling solid; the ghost ball where the cue ball strikes the red.
+    colours = driver.execute_script("""
+        return [...document.querySelectorAll('#table g.path.main')].map(g => ({
+          ball: g.dataset.ball,
+          strokes: [...new Set([...g.querySelectorAll('path[data-motion]')].map(p => p.getAttribute('stroke')))],
+          dashed: [...g.querySelectorAll('path[data-motion]')].map(p => [p.dataset.motion, p.getAttribute('stroke-dasharray')])}));""")
+    by_ball = {c["ball"]: c for c in colours}
+    for name, colour in (("cue ball", "#fbfbf5"), ("red", "#c8102e"), ("blue", "#1f4fbf")):
+        if name not in by_ball or by_ball[name]["strokes"] != [colour]:
+            fail(f"the {name}'s path is not drawn in its own colour {colour}: {colours}")
+    for c in colours:
+        for motion, dash in c["dashed"]:
+            if (motion == "sliding") != (dash is not None):
+                fail(f"the {c['ball']}'s {motion} path is drawn with dashes {dash!r}")
+    if not driver.find_elements(By.CSS_SELECTOR, "#table g.ghost-ball circle"):
+        fail("no ghost ball where the cue ball strikes the red")
+    pockets = [o.text for o in Select(driver.find_element(By.ID, "pot-pocket")).options]
+    if "top-right corner" not in pockets or not any("middle pocket" in p for p in pockets):
+        fail(f"the pockets are not named as players name them: {pockets}")
     print(f"pot: {text}")
+    print(f"colours: {[(c['ball'], c['strokes'][0]) for c in colours]}; pockets {pockets}")
     driver.save_screenshot(os.path.join(shots, "serve_pot.png"))
+    return text
+
+
+def animated_cue(driver):
+    return driver.execute_script("""
+        const c = document.querySelector('#table g.anim circle[data-ball="cue ball"]');
+        return c ? [Number(c.getAttribute('cx')), Number(c.getAttribute('cy'))] : null;""")
+
+
+def check_animation(driver):
+    # Replay the plan: the cue ball moves along the drawn path and stops where the path
+    # does; the speed control changes how fast the clock of the shot runs.
+    wait_for(driver, "the page to be idle", lambda d: not d.find_element(By.ID, "busy").is_displayed())
+    rest = driver.find_element(By.CSS_SELECTOR, "#table circle.rest")
+    end = (float(rest.get_attribute("cx")), float(rest.get_attribute("cy")))
+    Select(driver.find_element(By.ID, "anim-rate")).select_by_value("1")
+    driver.find_element(By.ID, "replay").click()
+    start = animated_cue(driver)
+    time.sleep(0.4)
+    middle = animated_cue(driver)
+    t_middle = float(driver.find_element(By.ID, "table").get_attribute("data-anim-t"))
+    wait_for(driver, "the animation's end", lambda d: d.find_element(By.ID, "table")
+             .get_attribute("data-anim") == "done", timeout=30)
+    final = animated_cue(driver)
+    duration = float(driver.find_element(By.ID, "table").get_attribute("data-anim-t"))
+    if not start or not middle or not final:
+        fail("no animated cue ball")
+    if math.dist(final, end) > 0.0005:
+        fail(f"the animated cue ball stops at {final}, the path at {end}")
+    if math.dist(middle, start) < 0.01 or math.dist(middle, final) < 0.01:
+        fail(f"the cue ball did not move along its path: {start} -> {middle} -> {final}")
+    # At 0.25x the shot's clock runs a quarter as fast as the wall's.
+    Select(driver.find_element(By.ID, "anim-rate")).select_by_value("0.25")
+    t0 = time.monotonic()
+    time.sleep(0.8)
+    t_slow = float(driver.find_element(By.ID, "table").get_attribute("data-anim-t"))
+    wall = time.monotonic() - t0
+    if not 0.1 * wall < t_slow < 0.4 * wall:
+        fail(f"at 0.25x the shot's clock reads {t_slow:.3f} s after {wall:.3f} s")
+    print(f"animation: cue ball from {start[0]:.3f},{start[1]:.3f} via {middle[0]:.3f},{middle[1]:.3f} "
+          f"(t = {t_middle:.2f} s) to {final[0]:.4f},{final[1]:.4f} m = the path's end; {duration:.2f} s "
+          f"shot; at 0.25x {t_slow:.3f} s of shot in {wall:.3f} s")
+
+
+def check_share(driver, url, outcome):
+    # Move the target 1 cm up, play, copy the link; opening it restores the example, the
+    # balls, the stroke and the options, and plays the stroke again.
+    target = driver.find_element(By.CSS_SELECTOR, "#table g.target")
+    target.send_keys(Keys.ARROW_UP)
+    ring = driver.find_element(By.CSS_SELECTOR, "#table g.target circle.ring")
+    place = (float(ring.get_attribute("cx")), float(ring.get_attribute("cy")))
+    driver.execute_script("document.getElementById('seed').value = 17;")
+    driver.find_element(By.ID, "play").click()
+    words = wait_for(driver, "the stroke's outcome", lambda d: d.execute_script(
+        "const w = document.getElementById('stroke-words');"
+        "return !document.getElementById('result').hidden && w &&"
+        " w.textContent.startsWith('Your stroke') ? w.textContent : null;"))
+    driver.find_element(By.ID, "share").click()
+    link = wait_for(driver, "the link", lambda d: d.find_element(By.ID, "share-url").get_attribute("value"))
+    if not link.startswith(url) or "#setup=" not in link:
+        fail(f"the link is not to this page: {link[:120]}")
+    driver.get("about:blank")
+    driver.get(link)
+    restored = wait_for(driver, "the linked stroke played", lambda d: d.execute_script(
+        "const w = document.getElementById('stroke-words');"
+        "return !document.getElementById('result').hidden && w &&"
+        " w.textContent.startsWith('Your stroke') ? w.textContent : null;"))
+    chosen = Select(driver.find_element(By.ID, "example")).first_selected_option.text
+    ring = driver.find_element(By.CSS_SELECTOR, "#table g.target circle.ring")
+    again = (float(ring.get_attribute("cx")), float(ring.get_attribute("cy")))
+    controls = [driver.find_element(By.ID, i).get_attribute("value")
+                for i in ("speed", "aim", "tip-right", "tip-up", "seed")]
+    if chosen != "plant into a corner" or math.dist(place, again) > 1e-9:
+        fail(f"the link opened {chosen!r} with the target at {again}, not {place}")
+    if controls != ["2.86", "23.88", "0.08", "-0.48", "17"]:
+        fail(f"the link restored the controls as {controls}")
+    if restored != words:
+        fail(f"the linked stroke gives {restored!r}, before {words!r}")
+    print(f"share: {len(link)} characters; restored {chosen}, target {again}, controls {controls}")
+    return link
+
+
+def check_layouts(driver, shots, link):
+    # A phone (390 x 844) and a tablet (768 x 1024): no sideways scrolling; on the phone the
+    # table is full width, above the controls.
+    for name, width, height in (("phone", 390, 844), ("tablet", 768, 1024)):
+        driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                               {"width": width, "height": height, "deviceScaleFactor": 1,
+                                "mobile": name == "phone"})
+        driver.get("about:blank")
+        driver.get(link)
+        wait_for(driver, "the linked stroke played", lambda d: d.execute_script(
+            "const w = document.getElementById('stroke-words');"
+            "return !document.getElementById('result').hidden && w &&"
+            " w.textContent.startsWith('Your stroke') ? w.textContent : null;"))
+        wait_for(driver, "the animation's end", lambda d: d.find_element(By.ID, "table")
+                 .get_attribute("data-anim") == "done", timeout=30)
+        box = driver.execute_script("""
+            const r = (id) => document.getElementById(id).getBoundingClientRect();
+            return {scroll: document.documentElement.scrollWidth, inner: window.innerWidth,
+                    table: r('table'), controls: r('stroke-heading')};""")
+        if box["scroll"] > box["inner"]:
+            fail(f"{name}: the page scrolls sideways ({box['scroll']} px in {box['inner']} px)")
+        if name == "phone":
+            if box["table"]["width"] < 0.9 * width or box["table"]["bottom"] > box["controls"]["top"]:
+                fail(f"phone: the table is {box['table']['width']:.0f} px wide, its bottom at "
+                     f"{box['table']['bottom']:.0f} px, the controls at {box['controls']['top']:.0f} px")
+        elif box["table"]["width"] < 400:
+            fail(f"tablet: the table is only {box['table']['width']:.0f} px wide")
+        driver.execute_script("window.scrollTo(0, 0)")
+        driver.save_screenshot(os.path.join(shots, f"serve_{name}.png"))
+        print(f"{name} {width}x{height}: table {box['table']['width']:.0f} x "
+              f"{box['table']['height']:.0f} px, page {box['scroll']} px wide")
+    driver.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
 
 
 def check_error(driver, shots):
@@ -360,10 +502,13 @@ def main():
             if chosen != "one-rail position":
                 fail(f"the page opened on {chosen!r}")
             check_plan(driver, args.out)
+            check_animation(driver)
             check_spin_map(driver, args.out, args.reference)
             check_dragging(driver)
             check_error(driver, args.out)
-            check_pot_example(driver, args.out)
+            outcome = check_pot_example(driver, args.out)
+            link = check_share(driver, url, outcome)
+            check_layouts(driver, args.out, link)
             # (Less the 400s the test provoked: the cue ball in a pocket.)
             logs = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"
                     and not re.search(r"/api/\w+ - .* status of 400", e["message"])]

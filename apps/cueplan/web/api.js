@@ -19,10 +19,12 @@ const sleep = (ms, signal) =>
     });
   });
 
-// GET (body undefined) or POST a JSON body; resolves to the answer's JSON. A 503 (all
-// workers busy, or an impact table still being made) is asked again after the server's
-// Retry-After, up to `retries` times; onWait(message, answer) says so meanwhile.
-export async function call(path, body, { signal, onWait, retries = 60 } = {}) {
+// GET (body undefined) or POST a JSON body; resolves to the answer's JSON. A 503 is
+// asked again after the server's Retry-After: once when the server is busy (its queue
+// full, or the wait beyond its budget), up to `tableRetries` times while an impact
+// table is being made; onWait(message, answer, seconds) says so meanwhile.
+export async function call(path, body, { signal, onWait, tableRetries = 60 } = {}) {
+  let busyRetries = 0;
   for (let attempt = 0; ; ++attempt) {
     let response;
     try {
@@ -44,9 +46,10 @@ export async function call(path, body, { signal, onWait, retries = 60 } = {}) {
     }
     if (response.ok && answer) return answer;
     const message = answer?.error ?? `the server answered HTTP ${response.status}`;
-    if (response.status === 503 && attempt < retries) {
+    const table = Boolean(answer?.impact_table);
+    if (response.status === 503 && (table ? attempt < tableRetries : busyRetries++ < 1)) {
       const seconds = Number(response.headers.get("Retry-After")) || 1;
-      onWait?.(message, answer);
+      onWait?.(message, answer, seconds);
       await sleep(seconds * 1000, signal);
       continue;
     }

@@ -5,7 +5,7 @@
 
 import { ApiError, call } from "./api.js";
 import { SpinDisc } from "./spin_disc.js";
-import { TableView } from "./table_view.js";
+import { TableView, pocketWords } from "./table_view.js";
 import { TipDisc } from "./tip_disc.js";
 
 const $ = (id) => document.getElementById(id);
@@ -99,19 +99,19 @@ function clearError() {
 
 // Runs one request with the progress line shown; errors land in the error box.
 // What the progress line says while the server asks the page to come back (503).
-function waitWords(message, answer) {
+function waitWords(message, answer, seconds) {
   if (!answer) return message;
   if (answer.impact_table)
     return "Waiting for the impact table of this cushion (made once; loading takes a second, " +
       "a first build about 30 s)...";
-  return "The server is busy; asking again...";
+  return `The server is busy (${answer.error}); trying once more in ${seconds} s...`;
 }
 
 async function task(text, work) {
   clearError();
   const say = busy(text);
   try {
-    await work((message, answer) => say(waitWords(message, answer)));
+    await work((message, answer, seconds) => say(waitWords(message, answer, seconds)));
   } catch (e) {
     if (!e.aborted) showError(e);
   } finally {
@@ -174,7 +174,7 @@ function fillPot() {
   const none = new Option("no pot", "");
   ball.replaceChildren(...(balls.length ? [none, ...balls.map((b) => new Option(b.name, b.name))]
     : [new Option("none on this table", "")]));
-  pocket.replaceChildren(...(pockets.length ? pockets.map((p) => new Option(p.name.replace("_", " "), p.name))
+  pocket.replaceChildren(...(pockets.length ? pockets.map((p) => new Option(pocketWords(p.name), p.name))
     : [new Option("no pockets on this table", "")]));
   ball.disabled = balls.length === 0;
   const pot = state.problem.pot;
@@ -183,7 +183,7 @@ function fillPot() {
   pocket.disabled = !pot;
   $("pot-note").textContent = !balls.length
     ? "This problem has no object balls: the plan leaves the cue ball on the target. Problems with object balls offer a pot here."
-    : pot ? `Pot the ${pot.ball} in the ${pot.pocket.replace("_", " ")} pocket; the cue ball must strike ` +
+    : pot ? `Pot the ${pot.ball} in the ${pocketWords(pot.pocket)}; the cue ball must strike ` +
       `the ${state.problem.first_contact ?? pot.ball} first.`
     : "Choose a ball to pot and its pocket, or play for position only.";
 }
@@ -214,6 +214,8 @@ function changed() {
   state.hoverAbort?.abort();
   table.setPositions(positions());
   table.setPaths([]);
+  animateShot(null);
+  $("share").textContent = "Copy link";
   $("result").hidden = true;
   if (state.map) {
     // The map follows the balls; until it has, it is shown faded.
@@ -321,7 +323,7 @@ function ballsOutcome(shot) {
   if (!shot.balls || shot.balls.length < 2) return "";
   if (!shot.first_contact) return "; it strikes no object ball";
   const pots = shot.balls.slice(1).filter((b) => b.pocketed)
-    .map((b) => `the ${b.name} in the ${b.pocket.replace("_", " ")} pocket`);
+    .map((b) => `the ${b.name} in the ${pocketWords(b.pocket)}`);
   return `; it strikes the ${shot.first_contact} first and ${pots.length ? "pots " + pots.join(" and ") : "pots nothing"}`;
 }
 
@@ -335,6 +337,90 @@ function cueOutcome(shot) {
   if (shot.status === "pocketed") return `is pocketed after ${cushionWord(shot.cushion_hits)}`;
   if (shot.status === "hit_obstacle") return `stops against an obstacle ball after ${cushionWord(shot.cushion_hits)}`;
   return `gives no outcome (${shot.status}: ${shot.message})`;
+}
+
+// ---------------------------------------------------------------------------
+// The shot's animation: the balls move along the simulator's paths
+
+function animateShot(shot) {
+  state.animated = shot ?? null;
+  $("replay").disabled = !shot;
+  if (!shot) return;
+  const rate = Number($("anim-rate").value) || 1;
+  table.animate(shot, rate, (t, duration) => {
+    $("anim-clock").textContent = `${fixed(t, 2)} of ${fixed(duration, 2)} s`;
+  });
+}
+
+// ---------------------------------------------------------------------------
+// Shareable links: the example, the balls, the stroke and the options in the address
+
+const SHARE_KEY = "setup";
+
+function shareState() {
+  return {
+    example: state.example.file,
+    problem: state.problem,
+    stroke: readStroke(),
+    options: { seed: $("seed").value, max_time: $("max-time").value, noise: $("noise").value,
+      grid: $("grid").value },
+  };
+}
+
+function shareLink() {
+  const url = new URL(window.location.href);
+  url.hash = `${SHARE_KEY}=${encodeURIComponent(JSON.stringify(shareState()))}`;
+  return url.toString();
+}
+
+async function copyLink() {
+  const link = shareLink();
+  history.replaceState(null, "", link);
+  const box = $("share-url");
+  box.value = link;
+  box.hidden = false;
+  box.select();
+  try {
+    await navigator.clipboard.writeText(link);
+    $("share").textContent = "Link copied";
+  } catch {
+    $("share").textContent = "Copy the link below";
+  }
+}
+
+// The set-up a link carries, or null (no link, or one that cannot be read).
+function sharedSetup() {
+  const hash = window.location.hash.slice(1);
+  if (!hash.startsWith(`${SHARE_KEY}=`)) return null;
+  try {
+    const s = JSON.parse(decodeURIComponent(hash.slice(SHARE_KEY.length + 1)));
+    if (typeof s !== "object" || typeof s.problem !== "object" || typeof s.example !== "string") return null;
+    return s;
+  } catch {
+    return null;
+  }
+}
+
+// Opens what a link carries: its example with its balls, its options and its stroke,
+// played.
+function restoreShared(setup) {
+  const index = state.examples.findIndex((e) => e.file === setup.example);
+  if (index < 0) {
+    showError(new Error(`the link names an example this server does not have: ${setup.example}`));
+    return false;
+  }
+  $("example").value = index;
+  selectExample(index);
+  state.problem = setup.problem;
+  for (const [id, key] of [["seed", "seed"], ["max-time", "max_time"], ["noise", "noise"], ["grid", "grid"]])
+    if (setup.options?.[key] !== undefined) $(id).value = setup.options[key];
+  fillPot();
+  changed();
+  if (setup.stroke && Number.isFinite(setup.stroke.speed)) {
+    setStroke(setup.stroke);
+    play();
+  }
+  return true;
 }
 
 // ---------------------------------------------------------------------------
@@ -361,7 +447,8 @@ function dl(rows) {
 
 function legendLine() {
   const p = document.createElement("p");
-  for (const [cls, words] of [["sliding", "sliding"], ["rolling", "rolling"], ["faint", "other ways (alternatives)"]]) {
+  for (const [cls, words] of [["sliding", "sliding (dashed)"], ["rolling", "rolling (solid)"],
+    ["cue", "cue ball"], ["object", "object ball: its own colour"], ["faint", "other ways (alternatives)"]]) {
     const item = document.createElement("span");
     item.className = "legend-line";
     const sw = document.createElement("span");
@@ -371,7 +458,8 @@ function legendLine() {
   }
   const note = document.createElement("span");
   note.className = "legend-line";
-  note.textContent = "numbered dots: cushion contacts; dashed ball: where it stops";
+  note.textContent = "numbered dots: cushion contacts; dashed ball: where it stops, or the ghost " +
+    "ball where the cue ball strikes";
   p.appendChild(note);
   return p;
 }
@@ -455,6 +543,7 @@ function renderPlan() {
         setStroke(a.shot);
         drawPlan();
         renderPlan();
+        animateShot(state.planShots[i]);
       };
       row.insertCell().appendChild(show);
     });
@@ -482,6 +571,7 @@ async function plan() {
       drawPlan();
     }
     renderPlan();
+    animateShot(state.planShots[0]);
     if (state.map) refreshMap();
   });
 }
@@ -496,6 +586,7 @@ async function play() {
   await task("Simulating...", async (wait) => {
     const shot = await simulate(stroke, "exact", { onWait: wait });
     table.setPaths([{ shot, style: "main" }]);
+    animateShot(shot);
     const box = $("result");
     box.replaceChildren();
     const words = document.createElement("p");
@@ -678,6 +769,9 @@ function bindControls() {
   $("tip-right").onchange = typedTip;
   $("tip-up").onchange = typedTip;
   $("grid").onchange = () => state.map && refreshMap();
+  $("replay").onclick = () => animateShot(state.animated);
+  $("anim-rate").onchange = () => state.animated && animateShot(state.animated);
+  $("share").onclick = copyLink;
 }
 
 async function start() {
@@ -690,9 +784,12 @@ async function start() {
     state.examples = examples;
     const picker = $("example");
     examples.forEach((e, i) => picker.appendChild(new Option(e.name, i)));
-    const first = Math.max(0, examples.findIndex((e) => e.file === DEFAULT_EXAMPLE));
-    picker.value = first;
-    selectExample(first);
+    const shared = sharedSetup();
+    if (!shared || !restoreShared(shared)) {
+      const first = Math.max(0, examples.findIndex((e) => e.file === DEFAULT_EXAMPLE));
+      picker.value = first;
+      selectExample(first);
+    }
   } catch (e) {
     showError(e);
   }

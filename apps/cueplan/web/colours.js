@@ -13,6 +13,7 @@ export const KIND_COLOURS = {
   at_rest_other_cushions: "#c6c6c6",
   hit_obstacle: "#7a7a7a",
   no_outcome: "#f0f0f0",
+  no_pot: "#d6604d",  // a pot problem: no aim pots the ball with this spin
   pocketed: "#ffffff",  // drawn hatched in #3a3a3a
 };
 export const HATCH = "#3a3a3a";

@@ -120,7 +120,8 @@ export class SpinDisc {
       o.at_rest_other_cushions > 0 && ["wrong", `at rest after a cushion count not allowed (${o.at_rest_other_cushions})`],
       o.pocketed > 0 && ["pocketed", `pocketed (${o.pocketed})`],
       o.hit_obstacle > 0 && ["obstacle", `stops against an obstacle ball (${o.hit_obstacle})`],
-      o.no_outcome > 0 && ["none", `no outcome (${o.no_outcome})`],
+      o.no_pot > 0 && ["no-pot", `no aim pots the ${map.pot_ball ?? "object ball"} with this spin (${o.no_pot})`],
+      o.no_outcome > 0 && ["none", `no outcome: the simulation gave no result (${o.no_outcome})`],
       planned && ["planned", "the planner's spin"],
     ].filter(Boolean);
     for (const [kind, words] of rows) {

@@ -13,6 +13,15 @@ const FONT = 0.052;            // m: text scales with the drawing
 
 export const SLIDING = "#D55E00";
 export const ROLLING = "#0072B2";
+// A path's dashes while the ball slides; a rolling ball's path is solid.
+export const SLIDING_DASH = "0.035 0.02";
+// Pockets as players say them: "top-right corner", "bottom middle" (pool players say
+// "side"; the page says "middle" for every game).
+export function pocketWords(name) {
+  const [side, where] = String(name ?? "").split("_");
+  if (!where) return String(name ?? "pocket");
+  return where === "middle" ? `${side} middle pocket` : `${side}-${where} corner`;
+}
 const TARGET = "#009E73";
 const CLOTH = { snooker: "#1f7a3f", pool: "#2a6aa8", carom: "#2f5f9e" };
 const CUSHION = { snooker: "#145a2c", pool: "#1f4f7e", carom: "#234a78" };
@@ -96,7 +105,7 @@ export class TableView {
       }
       el("circle", { cx: p.centre[0], cy: p.centre[1], r: p.radius, fill: "#050505" }, g);
       el("title", {}, g).textContent =
-        `${p.name} pocket: a ball whose centre comes within ${mm(p.radius)} mm of (${metres(p.centre[0])}, ${metres(p.centre[1])}) m drops`;
+        `${pocketWords(p.name)}: a ball whose centre comes within ${mm(p.radius)} mm of (${metres(p.centre[0])}, ${metres(p.centre[1])}) m drops`;
     }
     this.aimLine = el("line", { stroke: "#ffffff", "stroke-width": 0.006, "stroke-dasharray": "0.03 0.02",
       opacity: 0.8, visibility: "hidden" }, w);
@@ -104,6 +113,7 @@ export class TableView {
     this.pathLayer = el("g", { "stroke-linecap": "round", fill: "none" }, w);
     this.markLayer = el("g", {}, w);
     this.ballLayer = el("g", {}, w);
+    this.animLayer = el("g", { class: "anim" }, w);
     this.drawTicks(s, band);
     this.bindPointer();
     this.setPositions(s);
@@ -216,30 +226,56 @@ export class TableView {
 
   // Paths: [{shot: simulate's JSON, style: "main" | "faint" | "hover"}], drawn in order.
   setPaths(paths) {
+    this.stopAnimation();
     this.pathLayer.replaceChildren();
     this.markLayer.replaceChildren();
     for (const { shot, style } of paths) this.drawPath(shot, style);
   }
 
+  // A ball's colour on the table and on its path.
+  colourOf(name) {
+    if (!name || name === "cue ball" || name === "cue_ball") return BALL_COLOURS.white;
+    const b = (this.positions?.balls ?? []).find((x) => x.name === name);
+    return BALL_COLOURS[b?.colour ?? name] ?? "#d9a400";
+  }
+
   // A shot's paths: the cue ball's, then each object ball's that moved (`balls` of the
-  // simulate reply, the cue ball first), each ending in a ghost where it stops.
+  // simulate reply, the cue ball first), each ending in a ghost where it stops; each in
+  // its ball's colour, dashed while it slides. Where the cue ball first strikes a ball,
+  // the ghost ball (the cue ball at contact) is drawn.
   drawPath(shot, style) {
-    this.drawBallPath(shot, style);
+    this.drawBallPath(shot, style, BALL_COLOURS.white, "cue ball");
     for (const b of (shot.balls ?? []).slice(1))
-      if (b.path?.length) this.drawBallPath(b, style);
+      if (b.path?.length) this.drawBallPath(b, style, this.colourOf(b.name), b.name);
+    if (style === "faint") return;
+    const contact = (shot.events ?? []).find((e) => e.type === "ball_contact");
+    if (contact) {
+      const [x, y] = contact.position;
+      const g = el("g", { class: "ghost-ball" }, this.markLayer);
+      el("circle", { cx: x, cy: y, r: this.scene.ball_radius, fill: "rgba(255,255,255,0.25)",
+        stroke: "#ffffff", "stroke-width": 0.005, "stroke-dasharray": "0.012 0.008" }, g);
+      el("title", {}, g).textContent = `ghost ball: the cue ball where it strikes (${metres(x)}, ${metres(y)}) m`;
+    }
   }
 
   // One ball's movement: {path, events, final_position}.
-  drawBallPath(shot, style) {
+  drawBallPath(shot, style, colour = BALL_COLOURS.white, name = "cue ball") {
     const width = style === "faint" ? 0.006 : style === "hover" ? 0.009 : 0.012;
-    const g = el("g", { class: `path ${style}`, opacity: style === "faint" ? 0.55 : 1 }, this.pathLayer);
+    const g = el("g", { class: `path ${style}`, opacity: style === "faint" ? 0.55 : 1,
+      "data-ball": name }, this.pathLayer);
     // Consecutive segments of one motion make one SVG path of quadratic Bezier pieces
     // (exact: the ball moves on parabolas between events).
     let d = "", motion = null;
     const flush = () => {
       if (!d) return;
-      const colour = style === "faint" ? "#dcdcdc" : motion === "sliding" ? SLIDING : ROLLING;
-      el("path", { d, stroke: colour, "stroke-width": width, "data-motion": motion }, g);
+      const stroke = style === "faint" ? "#dcdcdc" : colour;
+      const attributes = { d, stroke, "stroke-width": width, "data-motion": motion };
+      if (motion === "sliding") attributes["stroke-dasharray"] = SLIDING_DASH;
+      // A dark edge keeps a white or yellow line readable on the cloth.
+      if (style !== "faint")
+        el("path", { d, stroke: "rgba(0,0,0,0.45)", "stroke-width": width * 1.7,
+          "stroke-dasharray": attributes["stroke-dasharray"] ?? "none" }, g);
+      el("path", attributes, g);
       d = "";
     };
     for (const seg of shot.path) {
@@ -265,6 +301,46 @@ export class TableView {
     const [x, y] = shot.final_position;
     el("circle", { cx: x, cy: y, r: this.scene.ball_radius, fill: "url(#ghost-fill)", stroke: "#ffffff",
       "stroke-width": 0.004, "stroke-dasharray": "0.01 0.006", class: "rest" }, this.markLayer);
+  }
+
+  // Moves the balls along a shot's paths (simulate's JSON) at `rate` times real time;
+  // onTick(t, duration) after each frame. The moving balls are drawn over the table's
+  // own, which keep their places; the last frame leaves each where it stops.
+  animate(shot, rate, onTick) {
+    this.stopAnimation();
+    const moving = [{ name: "cue ball", path: shot.path, colour: BALL_COLOURS.white }];
+    for (const b of (shot.balls ?? []).slice(1))
+      if (b.path?.length) moving.push({ name: b.name, path: b.path, colour: this.colourOf(b.name) });
+    const duration = Math.max(...moving.map((m) => m.path.at(-1)?.t1 ?? 0));
+    const circles = moving.map((m) => el("circle", { r: this.scene.ball_radius, fill: m.colour,
+      stroke: "#000", "stroke-width": 0.004, "data-ball": m.name }, this.animLayer));
+    const place = (t) => moving.forEach((m, i) => {
+      const path = m.path;
+      let p = path[0].p0;
+      if (t >= path.at(-1).t1) p = at(path.at(-1), path.at(-1).t1 - path.at(-1).t0);
+      else for (const seg of path) if (t >= seg.t0 && t <= seg.t1) { p = at(seg, t - seg.t0); break; }
+      circles[i].setAttribute("cx", p[0]);
+      circles[i].setAttribute("cy", p[1]);
+    });
+    const started = performance.now();
+    this.svg.dataset.anim = "running";
+    const frame = (now) => {
+      const t = Math.min(duration, ((now - started) / 1000) * rate);
+      place(t);
+      this.svg.dataset.animT = t.toFixed(3);
+      onTick?.(t, duration);
+      if (t < duration) this.animFrame = requestAnimationFrame(frame);
+      else this.svg.dataset.anim = "done";
+    };
+    place(0);
+    this.animFrame = requestAnimationFrame(frame);
+  }
+
+  stopAnimation() {
+    if (this.animFrame) cancelAnimationFrame(this.animFrame);
+    this.animFrame = null;
+    this.animLayer?.replaceChildren();
+    if (this.svg.dataset.anim) this.svg.dataset.anim = "stopped";
   }
 
   // Table coordinates of a pointer event.
