@@ -13,6 +13,10 @@ not the clock, ends each search), so the atlas is the same on one machine or man
 
 Without --scheduler a LocalCluster of --workers processes (one thread each) runs on
 this machine. Remote workers need the cueplan module on their PYTHONPATH.
+
+Results stream: at most --window tasks are in flight, and each record is written to
+--json and folded into the picture's grid as it comes, in the order of the cells, so
+memory does not grow with the atlas.
 """
 import argparse
 import json
@@ -66,18 +70,85 @@ def solve_cell(fields, target, cell, options):
                 miss_distance=r["miss_distance"], shot=r["shot"], stroke=r["stroke"])
 
 
-def atlas(fields, targets, grid, options, client=None):
-    """Every (target, cell) solved - by the Dask client's workers, or here in turn."""
-    jobs = [(t, c) for t in targets for c in cells_of(fields, grid)]
+def atlas(fields, targets, grid, options, client=None, window=None):
+    """Every (target, cell) solved - by the Dask client's workers, or here in turn -
+    yielded one record at a time in the order of the cells, as they come: at most
+    `window` tasks are in flight (four a worker by default), so neither this process
+    nor the cluster holds the atlas, whatever its size."""
+    jobs = ((t, c) for t in targets for c in cells_of(fields, grid))
     if client is None:
-        return [solve_cell(fields, t, c, options) for t, c in jobs]
-    # Scatter the problem once; one task a cell, gathered in the order submitted.
+        for t, c in jobs:
+            yield solve_cell(fields, t, c, options)
+        return
+    from collections import deque
+    if window is None:
+        window = 4 * max(1, len(client.scheduler_info()["workers"]))
+    # Scatter the problem once; one task a cell. The oldest task's record is handed on
+    # as soon as it is done, and another task takes its place, so the workers stay busy
+    # while this process waits in order.
     shared = client.scatter(fields, broadcast=True)
-    futures = [client.submit(solve_cell, shared, t, c, options, pure=False) for t, c in jobs]
-    return client.gather(futures)
+    in_flight = deque()
+    for t, c in jobs:
+        in_flight.append(client.submit(solve_cell, shared, t, c, options, pure=False))
+        if len(in_flight) >= window:
+            future = in_flight.popleft()
+            yield future.result()
+            future.release()
+    while in_flight:
+        future = in_flight.popleft()
+        yield future.result()
+        future.release()
 
 
-def draw(fields, targets, grid, records, out):
+class AtlasSummary:
+    """What the picture and the summary line need of the records: one success value a
+    cell and target, kept as each record streams past (the records are not held)."""
+
+    def __init__(self, targets, grid):
+        import math
+        nx, ny = grid
+        self.grid = grid
+        self.targets = [list(t) for t in targets]
+        # success[target][j][i]: NaN where there is no problem, 0 where none was solved.
+        self.success = [[[math.nan] * nx for _ in range(ny)] for _ in targets]
+        self.unsolved = [[[False] * nx for _ in range(ny)] for _ in targets]
+        self.solved_by_target = [0 for _ in targets]
+        self.cells = 0
+        self.solved = 0
+
+    def add(self, record):
+        self.cells += 1
+        t = self.targets.index(list(record["target"]))
+        i, j = record["cell"]
+        if record["status"] == "solved":
+            self.success[t][j][i] = record["success"]
+            self.solved += 1
+            self.solved_by_target[t] += 1
+        elif record["status"] != "invalid_input":
+            self.unsolved[t][j][i] = True
+            self.success[t][j][i] = 0.0
+
+
+class JsonAtlasWriter:
+    """The atlas as one JSON object, {"grid", "targets", "options", "records": [...]},
+    written a record at a time."""
+
+    def __init__(self, path, grid, targets, options):
+        self.file = open(path, "w")
+        head = json.dumps({"grid": grid, "targets": targets, "options": options})
+        self.file.write(head[:-1] + ', "records": [')
+        self.first = True
+
+    def add(self, record):
+        self.file.write(("" if self.first else ", ") + json.dumps(record))
+        self.first = False
+
+    def close(self):
+        self.file.write("]}\n")
+        self.file.close()
+
+
+def draw(fields, targets, grid, summary, out):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -92,20 +163,11 @@ def draw(fields, targets, grid, records, out):
     cmap = plt.get_cmap("viridis").copy()
     cmap.set_bad("#bbbbbb")
     # One colour scale for every target, so their panels compare.
-    best = max([r["success"] for r in records if r["status"] == "solved"], default=1.0)
+    best = float(np.nanmax(np.array(summary.success, dtype=float), initial=0.0)) or 1.0
     norm = colors.Normalize(0, max(0.05, best))
-    for axis, target in zip(axes[:, 0], targets):
-        success = np.full((ny, nx), np.nan)
-        unsolved = np.zeros((ny, nx), dtype=bool)
-        for r in records:
-            if r["target"] != list(target):
-                continue
-            i, j = r["cell"]
-            if r["status"] == "solved":
-                success[j, i] = r["success"]
-            elif r["status"] != "invalid_input":
-                unsolved[j, i] = True
-                success[j, i] = 0.0
+    for t, (axis, target) in enumerate(zip(axes[:, 0], targets)):
+        success = np.array(summary.success[t], dtype=float)
+        unsolved = np.array(summary.unsolved[t], dtype=bool)
         margin = 0.06
         extent = (margin, length - margin, margin, width - margin)
         image = axis.imshow(np.ma.masked_invalid(success), origin="lower", extent=extent, cmap=cmap,
@@ -126,7 +188,7 @@ def draw(fields, targets, grid, records, out):
         axis.set_aspect("equal")
         axis.set_xlabel("x (m)")
         axis.set_ylabel("y (m)")
-        solved = sum(1 for r in records if r["target"] == list(target) and r["status"] == "solved")
+        solved = summary.solved_by_target[t]
         axis.set_title(f"Target ({target[0]:.2f}, {target[1]:.2f}) m: {solved} of {nx * ny} cue-ball cells solved")
         fig.colorbar(image, ax=axis, label="success under a player's noise (fraction)", shrink=0.85)
     fig.suptitle("Position atlas: where the cue ball can be left on the target from each cell\n"
@@ -152,7 +214,10 @@ def parse_args(argv):
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--method", default="table", help="cushion impacts: table (fast) or exact")
     p.add_argument("--out", help="the atlas as a picture (PNG, SVG or PDF)")
-    p.add_argument("--json", help="the atlas's records as JSON")
+    p.add_argument("--json", help="the atlas's records as JSON, written as they come")
+    p.add_argument("--window", type=int,
+                   help="most tasks in flight at once (default: four a worker); memory is "
+                        "bounded by it, not by the atlas's size")
     return p.parse_args(argv)
 
 
@@ -168,9 +233,18 @@ def main(argv=None):
     # table once, so local workers load it instead of each building it.
     solve_cell(fields, targets[0], cells_of(fields, args.grid)[0], options)
 
+    summary = AtlasSummary(targets, args.grid)
+    writer = JsonAtlasWriter(args.json, args.grid, targets, options) if args.json else None
+
+    def consume(records):
+        for record in records:
+            summary.add(record)
+            if writer:
+                writer.add(record)
+
     if args.serial:
         started = time.perf_counter()
-        records = atlas(fields, targets, args.grid, options)
+        consume(atlas(fields, targets, args.grid, options))
         seconds = time.perf_counter() - started
         where = "serial"
     else:
@@ -188,20 +262,18 @@ def main(argv=None):
             # starts: the time is the atlas's, not the cluster's start.
             client.run(solve_cell, fields, targets[0], cells_of(fields, args.grid)[0], options)
             started = time.perf_counter()
-            records = atlas(fields, targets, args.grid, options, client)
+            consume(atlas(fields, targets, args.grid, options, client, window=args.window))
             seconds = time.perf_counter() - started
             where = f"{workers} Dask workers ({args.scheduler or 'LocalCluster'})"
         if cluster is not None:
             cluster.close()
-    cells = len(records)
-    solved = sum(1 for r in records if r["status"] == "solved")
+    if writer:
+        writer.close()
+    cells = summary.cells
     print(f"atlas: {cells} problems ({args.grid[0]} x {args.grid[1]} cells x {len(targets)} targets) "
-          f"solved on {where} in {seconds:.2f} s ({cells / seconds:.2f} problems/s); {solved} solved")
-    if args.json:
-        with open(args.json, "w") as f:
-            json.dump({"grid": args.grid, "targets": targets, "options": options, "records": records}, f)
+          f"solved on {where} in {seconds:.2f} s ({cells / seconds:.2f} problems/s); {summary.solved} solved")
     if args.out:
-        draw(fields, targets, args.grid, records, args.out)
+        draw(fields, targets, args.grid, summary, args.out)
         print(f"atlas: drawn to {args.out}")
     return 0
 

@@ -10,6 +10,7 @@
 #include "collide_command.hpp"
 #include "exit_codes.hpp"
 #include "figures_command.hpp"
+#include "merge_command.hpp"
 #include "rebound_command.hpp"
 #include "route_command.hpp"
 #include "serve_command.hpp"
@@ -88,9 +89,10 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   SpinmapCommand spinmap(app);
   RouteCommand route(app);
   ServeCommand serve(app);
+  MergeCommand merge(app);
   const std::vector<CommandEntry> commands = {entry(rebound), entry(collide), entry(simulate),
                                               entry(figures), entry(solve),   entry(spinmap),
-                                              entry(route),   entry(serve)};
+                                              entry(route),   entry(serve),   entry(merge)};
 
   try {
     app.parse(argc, argv);

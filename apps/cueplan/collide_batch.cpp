@@ -7,7 +7,6 @@
 #include <optional>
 #include <utility>
 
-#include "cueplan/physics/parallel.hpp"
 #include "csv.hpp"
 #include "field_names.hpp"
 
@@ -132,14 +131,14 @@ BatchJob collide_batch_job(const phys::BallBallParams& params,
   job.command = "cueplan collide";
   job.header = std::string(kCollideBatchHeader) + ',' + kCollideBatchResultHeader;
   job.input_columns = kInputColumns;
-  job.block_rows = 4096;
+  job.block_rows = 1024;
+  job.threads = threads;
   job.failed = [](const std::string& status) {
     return status != phys::to_string(phys::CollisionStatus::ok);
   };
-  job.compute = [&params, &options, threads](std::span<const BatchRow> rows,
-                                             std::span<BatchOutcome> outcomes) {
-    phys::parallel_for(rows.size(), phys::thread_count(threads, rows.size()),
-                       [&](size_t i, unsigned) { outcomes[i] = solve_row(rows[i], params, options); });
+  job.compute = [&params, &options](std::span<const BatchRow> rows,
+                                    std::span<BatchOutcome> outcomes) {
+    for (size_t i = 0; i < rows.size(); ++i) outcomes[i] = solve_row(rows[i], params, options);
   };
   return job;
 }

@@ -9,7 +9,7 @@
 //         again, that speed and its direction (deg from +x); then throw_deg, status and a
 //         quoted message. A bad row gets status parse_error or invalid_input and empty
 //         result cells; the others are unaffected. Rows come out in input order,
-//         identical for any thread count, each block as soon as it is resolved.
+//         identical for any thread count, each chunk as soon as it is resolved.
 #pragma once
 
 #include <string>
@@ -64,7 +64,7 @@ std::string flag_of(const physics::FieldPath& field);
 // A library error in the flags' words.
 std::string flag_message(const physics::ValidationError& error);
 
-// The batch of collisions: each block's rows resolved from `threads` threads (0: one
+// The batch of collisions: chunks of rows resolved from `threads` threads (0: one
 // per core); rows whose status is not ok fail. `params` and `options` must outlive the
 // job.
 BatchJob collide_batch_job(const physics::BallBallParams& params,

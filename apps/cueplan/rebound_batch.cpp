@@ -4,7 +4,6 @@
 #include <optional>
 #include <span>
 
-#include "cueplan/physics/parallel.hpp"
 #include "csv.hpp"
 #include "rebound_inputs.hpp"
 
@@ -71,16 +70,17 @@ BatchJob rebound_batch_job(const physics::CushionParams& params,
   job.header = std::string(kBatchInputHeader) +
                ",rebound_speed,rebound_angle_deg,vx,vy,wx,wy,wz,status,message";
   job.input_columns = kInputColumns;
-  job.block_rows = 32 * kChunk;
+  job.block_rows = 4 * kChunk;
+  job.threads = threads;
   job.failed = [](const std::string& status) {
     return status != physics::to_string(physics::ImpactStatus::ok) &&
            status != physics::to_string(physics::ImpactStatus::rigid_limit_exceeded);
   };
-  // A block's rows parsed in order; the valid ones resolved together, in chunks over the
-  // threads (resolve_impacts gives each impact what resolve_impact would: the output
-  // does not depend on the thread count or the block size).
-  job.compute = [&params, &options, threads](std::span<const BatchRow> rows,
-                                             std::span<BatchOutcome> outcomes) {
+  // A chunk's rows parsed in order; the valid ones resolved together, kChunk at a time
+  // (resolve_impacts gives each impact what resolve_impact would: the output does not
+  // depend on the thread count or the chunk size).
+  job.compute = [&params, &options](std::span<const BatchRow> rows,
+                                    std::span<BatchOutcome> outcomes) {
     std::vector<physics::BallState> incoming;
     std::vector<size_t> row_of;
     for (size_t i = 0; i < rows.size(); ++i) {
@@ -93,12 +93,11 @@ BatchJob rebound_batch_job(const physics::CushionParams& params,
       }
     }
     std::vector<physics::ImpactResult> results(incoming.size());
-    const size_t chunks = (incoming.size() + kChunk - 1) / kChunk;
-    physics::parallel_for(chunks, physics::thread_count(threads, chunks), [&](size_t c, unsigned) {
-      const size_t begin = c * kChunk, count = std::min(kChunk, incoming.size() - begin);
+    for (size_t begin = 0; begin < incoming.size(); begin += kChunk) {
+      const size_t count = std::min(kChunk, incoming.size() - begin);
       physics::resolve_impacts(params, std::span(incoming).subspan(begin, count),
                                std::span(results).subspan(begin, count), options);
-    });
+    }
     for (size_t j = 0; j < results.size(); ++j)
       outcomes[row_of[j]] = outcome_of(rows[row_of[j]], results[j]);
   };

@@ -6,7 +6,7 @@
 //         wx, wy, wz (rad/s, cushion frame), status and a quoted message. A bad row gets
 //         status parse_error or invalid_input and empty result cells; the others are
 //         unaffected. Rows come out in input order, identical for any thread count,
-//         each block of rows as soon as it is resolved (batch_csv.hpp).
+//         each chunk of rows as soon as it is resolved (batch_csv.hpp).
 #pragma once
 
 #include "batch_csv.hpp"
@@ -17,7 +17,7 @@ namespace cueplan::cli {
 // The header an input file starts with (read it with BatchReader).
 inline constexpr const char* kBatchInputHeader = "speed,angle_deg,topspin_k,sidespin_k";
 
-// The batch of impacts: each block's valid rows resolved together (from `threads`
+// The batch of impacts: each chunk's valid rows resolved together (from `threads`
 // threads, 0: one per core); rows without a usable result (parse_error, invalid_input,
 // step_limit) fail. `params` and `options` must outlive the job.
 BatchJob rebound_batch_job(const physics::CushionParams& params,

@@ -125,18 +125,17 @@ BatchJob shot_batch_job(const problems::Problem& problem, const phys::Simulation
   job.command = "cueplan simulate";
   job.header = std::string(kShotBatchHeader) + ',' + kShotBatchResultHeader;
   job.input_columns = kInputColumns;
-  job.block_rows = 1024;
+  job.block_rows = 64;  // a shot takes far longer than an impact
+  job.threads = threads;
   job.failed = [](const std::string& status) {
     return status != phys::to_string(phys::ShotStatus::rest) &&
            status != phys::to_string(phys::ShotStatus::pocketed) &&
            status != phys::to_string(phys::ShotStatus::hit_obstacle);
   };
-  job.compute = [&problem, scene, row_options, threads](std::span<const BatchRow> rows,
-                                                        std::span<BatchOutcome> outcomes) {
-    phys::parallel_for(rows.size(), phys::thread_count(threads, rows.size()),
-                       [&](size_t i, unsigned) {
-                         outcomes[i] = simulate_row(rows[i], problem, *scene, row_options);
-                       });
+  job.compute = [&problem, scene, row_options](std::span<const BatchRow> rows,
+                                               std::span<BatchOutcome> outcomes) {
+    for (size_t i = 0; i < rows.size(); ++i)
+      outcomes[i] = simulate_row(rows[i], problem, *scene, row_options);
   };
   return job;
 }

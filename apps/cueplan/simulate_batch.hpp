@@ -10,7 +10,7 @@
 //         empty) and pocketed_balls (the object balls pocketed, NAME:POCKET joined by ';',
 //         in the order of the file's balls). A bad row gets status parse_error or
 //         invalid_input and empty result cells; the others are unaffected. Rows come out
-//         in input order, identical for any thread count, each block of rows as soon
+//         in input order, identical for any thread count, each chunk of rows as soon
 //         as it is simulated (batch_csv.hpp).
 #pragma once
 
@@ -51,7 +51,7 @@ std::string check_shot_inputs(const physics::Shot& shot, const ShotNames& names)
 // line each naming the input.
 std::vector<std::string> shot_warnings(const physics::Shot& shot, const ShotNames& names);
 
-// The batch of shots: each block's rows simulated on the problem's scene (from
+// The batch of shots: chunks of rows simulated on the problem's scene (from
 // `threads` threads, 0: one per core); rows without an outcome (parse_error,
 // invalid_input, event_limit, impact_failed, collision_failed) fail. `problem` (and
 // the table options point at) must outlive the job.

@@ -225,7 +225,8 @@ struct Pending {
 // lines in input order: at most `window` problems are held at once, so memory does not
 // grow with the file, and a slow problem holds back only the writing, not the solving.
 BatchSummary solve_all(std::istream& in, const std::string& file_name, const BatchSettings& s,
-                       std::ostream& out, std::ostream& err, bool show_progress) {
+                       std::ostream& out, std::ostream& err, bool show_progress,
+                       bool flush_each_line) {
   using Clock = std::chrono::steady_clock;
   const unsigned threads = phys::thread_count(s.threads);
   const size_t window = 4 * static_cast<size_t>(threads) + 4;
@@ -239,6 +240,36 @@ BatchSummary solve_all(std::istream& in, const std::string& file_name, const Bat
   size_t next = 0;              // the next problem to start
   bool read_all = false;
 
+  bool writing = false;          // a worker is writing finished lines
+
+  BatchSummary summary;
+  Clock::time_point shown{};
+  // Writes the finished lines at the front, in order; called by one worker at a time
+  // (`writing`), with the lock held, which it lets go while it writes.
+  const auto write_finished = [&](std::unique_lock<std::mutex>& lock) {
+    while (!pending.empty() && pending.front().answer) {
+      Answer answer = std::move(*pending.front().answer);
+      pending.pop_front();
+      ++first;
+      changed.notify_all();  // room for the reader
+      lock.unlock();
+      out << answer.text << '\n';
+      if (flush_each_line) out.flush();  // a pipe or terminal: its reader sees it now
+      ++summary.rows;
+      ++summary.by_status[answer.status];
+      if (answer.status != plan::to_string(plan::PlanStatus::solved)) ++summary.failed;
+      if (show_progress && Clock::now() - shown > std::chrono::milliseconds(250)) {
+        shown = Clock::now();
+        std::lock_guard err_lock(err_mutex);
+        err << '\r' << kCommandName << ": " << summary.rows << " problems done" << std::flush;
+      }
+      lock.lock();
+    }
+  };
+
+  // Each worker solves the next problem read; the one that answers the oldest unwritten
+  // problem writes it and every answered one after it (an ordered hand-off), so lines
+  // come out as soon as they can, even while the reader waits for more input.
   const auto work = [&] {
     std::unique_lock lock(mutex);
     for (;;) {
@@ -254,32 +285,16 @@ BatchSummary solve_all(std::istream& in, const std::string& file_name, const Bat
       }
       lock.lock();
       p.answer = std::move(answer);
+      if (!writing) {
+        writing = true;
+        write_finished(lock);
+        writing = false;
+      }
       changed.notify_all();
     }
   };
   std::vector<std::jthread> pool;
   for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
-
-  BatchSummary summary;
-  Clock::time_point shown{};
-  const auto write_finished = [&](std::unique_lock<std::mutex>& lock) {
-    while (!pending.empty() && pending.front().answer) {
-      Answer answer = std::move(*pending.front().answer);
-      pending.pop_front();
-      ++first;
-      lock.unlock();
-      out << answer.text << '\n';
-      ++summary.rows;
-      ++summary.by_status[answer.status];
-      if (answer.status != plan::to_string(plan::PlanStatus::solved)) ++summary.failed;
-      if (show_progress && Clock::now() - shown > std::chrono::milliseconds(250)) {
-        shown = Clock::now();
-        std::lock_guard err_lock(err_mutex);
-        err << '\r' << kCommandName << ": " << summary.rows << " problems done" << std::flush;
-      }
-      lock.lock();
-    }
-  };
 
   // Reads the next problem of this shard (blank lines skipped); nothing at the end.
   std::string line;
@@ -299,24 +314,17 @@ BatchSummary solve_all(std::istream& in, const std::string& file_name, const Bat
   {
     std::unique_lock lock(mutex);
     while (!read_all) {
-      write_finished(lock);
-      if (pending.size() < window) {
-        lock.unlock();
-        std::optional<Pending> p = read_problem();
-        lock.lock();
-        if (p)
-          pending.push_back(std::move(*p));
-        else
-          read_all = true;
-        changed.notify_all();
-      } else {
-        changed.wait(lock, [&] { return pending.front().answer.has_value(); });
-      }
+      changed.wait(lock, [&] { return pending.size() < window; });
+      lock.unlock();
+      std::optional<Pending> p = read_problem();
+      lock.lock();
+      if (p)
+        pending.push_back(std::move(*p));
+      else
+        read_all = true;
+      changed.notify_all();
     }
-    while (!pending.empty()) {
-      changed.wait(lock, [&] { return pending.front().answer.has_value(); });
-      write_finished(lock);
-    }
+    changed.wait(lock, [&] { return pending.empty() && !writing; });
   }
   if (in.bad()) summary.error = "--batch: error while reading " + file_name;
   pool.clear();  // joins
@@ -406,7 +414,8 @@ int run_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool acc
     name = batch.batch_file;
   }
   const bool terminal = err.rdbuf() == std::cerr.rdbuf() && isatty(STDERR_FILENO) == 1;
-  const BatchSummary summary = solve_all(*in, name, settings, out, err, terminal);
+  const bool interactive = out.rdbuf() == std::cout.rdbuf() && stdout_is_interactive();
+  const BatchSummary summary = solve_all(*in, name, settings, out, err, terminal, interactive);
   if (!summary.error.empty()) err << kCommandName << ": " << summary.error << '\n';
   err << summary_line(kCommandName, summary, "problem") << '\n';
   return summary.error.empty() && summary.failed == 0 ? kExitOk : kExitFailed;

@@ -94,10 +94,15 @@ TEST(SolveBatch, ShardsInterleaveToTheUnshardedOutput) {
       answers(cueplan("solve --batch '" + file + "' --threads 2 " + kQuick, "whole"));
   ASSERT_EQ(whole.size(), 12u);
   std::vector<std::vector<json>> shards;
-  for (int k = 0; k < 5; ++k)
-    shards.push_back(answers(cueplan("solve --batch '" + file + "' --shard " + std::to_string(k) +
-                                         "/5 --threads 1 " + kQuick,
-                                     "shard" + std::to_string(k))));
+  std::vector<std::string> parts;
+  for (int k = 0; k < 5; ++k) {
+    const ProcessResult shard = cueplan("solve --batch '" + file + "' --shard " +
+                                            std::to_string(k) + "/5 --threads 1 " + kQuick,
+                                        "shard" + std::to_string(k));
+    shards.push_back(answers(shard));
+    parts.push_back((scratch() / ("part" + std::to_string(k) + ".jsonl")).string());
+    write_text(parts.back(), shard.out);
+  }
   std::vector<json> interleaved;
   for (size_t j = 0; j < 3; ++j)
     for (const std::vector<json>& shard : shards)
@@ -107,6 +112,57 @@ TEST(SolveBatch, ShardsInterleaveToTheUnshardedOutput) {
     EXPECT_EQ(interleaved[i], whole[i]) << "line " << i + 1;  // deliberate: determinism
   EXPECT_EQ(shards[0].size(), 3u);  // problems 0, 5, 10
   EXPECT_EQ(shards[4].size(), 2u);  // problems 4, 9
+
+  // `cueplan merge` puts the parts, given in any order, back into the input's order.
+  const std::string shuffled =
+      "'" + parts[3] + "' '" + parts[0] + "' '" + parts[4] + "' '" + parts[2] + "' '" + parts[1] + "'";
+  const ProcessResult merged = cueplan("merge " + shuffled, "merge");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_EQ(merged.err, "cueplan merge: 12 lines from 5 parts\n");
+  const std::vector<json> merged_answers = answers(merged);
+  ASSERT_EQ(merged_answers.size(), whole.size());
+  for (size_t i = 0; i < whole.size(); ++i)
+    EXPECT_EQ(merged_answers[i], whole[i]) << "line " << i + 1;  // deliberate: determinism
+  // --out: the same lines in a file.
+  const fs::path out = scratch() / "merged.jsonl";
+  const ProcessResult to_file = cueplan("merge " + shuffled + " --out '" + out.string() + "'", "to_file");
+  ASSERT_EQ(to_file.exit_code, 0) << to_file.err;
+  EXPECT_EQ(to_file.out, "");
+  EXPECT_EQ(read_text(out), merged.out);
+}
+
+TEST(SolveBatch, MergeRefusesWhatIsNotOneOutputPerShard) {
+  const std::string a = (scratch() / "merge_a.jsonl").string();
+  const std::string b = (scratch() / "merge_b.jsonl").string();
+  write_text(a, "{\"id\": 0, \"line\": 1}\n{\"id\": 2, \"line\": 3}\n");
+  write_text(b, "{\"id\": 1, \"line\": 2}\n\n{\"id\": 3, \"line\": 4}\n");
+  const ProcessResult good = cueplan("merge '" + b + "' '" + a + "'", "good");
+  ASSERT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_EQ(good.out,
+            "{\"id\": 0, \"line\": 1}\n{\"id\": 1, \"line\": 2}\n{\"id\": 2, \"line\": 3}\n"
+            "{\"id\": 3, \"line\": 4}\n");
+
+  const ProcessResult twice = cueplan("merge '" + a + "' '" + b + "' '" + a + "'", "twice");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("given twice"), std::string::npos) << twice.err;
+
+  const std::string backward = (scratch() / "merge_backward.jsonl").string();
+  write_text(backward, "{\"id\": 2, \"line\": 3}\n{\"id\": 0, \"line\": 1}\n");
+  const ProcessResult reversed = cueplan("merge '" + backward + "'", "reversed");
+  EXPECT_EQ(reversed.exit_code, 2);
+  EXPECT_NE(reversed.err.find(backward + ":2: line 1 comes after line 3"), std::string::npos)
+      << reversed.err;
+
+  const std::string bad = (scratch() / "merge_bad.jsonl").string();
+  write_text(bad, "{\"id\": 0, \"line\": 1}\nrebound_speed,1.2\n");
+  const ProcessResult not_json = cueplan("merge '" + bad + "'", "not_json");
+  EXPECT_EQ(not_json.exit_code, 2);
+  EXPECT_NE(not_json.err.find(bad + ":2: not a JSON object"), std::string::npos) << not_json.err;
+
+  const ProcessResult missing = cueplan("merge /nonexistent/part0.jsonl", "missing");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("cannot open /nonexistent/part0.jsonl"), std::string::npos)
+      << missing.err;
 }
 
 TEST(SolveBatch, SeedFollowsTheIdNotThePlace) {
