@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <deque>
 #include <iostream>
 #include <mutex>
@@ -162,6 +163,14 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// CPU seconds this thread has run (user and system): unlike the wall clock, it does not
+// count the time a loaded machine keeps the thread waiting for a core.
+double thread_cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // A chunk's output rows and how many of each status they had.
 struct ChunkResult {
   std::string text;
@@ -223,7 +232,7 @@ class OrderedWriter {
 
   // False when the output broke off.
   bool write(ChunkResult& chunk) {
-    const Clock::time_point start = Clock::now();
+    const double start = thread_cpu_seconds();
     out_.write(chunk.text.data(), static_cast<std::streamsize>(chunk.text.size()));
     if (how_.flush_each_chunk) out_.flush();
     for (const auto& [status, count] : chunk.by_status) {
@@ -231,7 +240,7 @@ class OrderedWriter {
       if (job_.failed(status)) summary_->failed += count;
     }
     summary_->rows += chunk.rows;
-    write_seconds_ += seconds_since(start);
+    write_seconds_ += thread_cpu_seconds() - start;
     if (!out_) return false;
     // Rewritten at most a few times a second, so a terminal keeps up.
     if (how_.progress && Clock::now() - shown_ > std::chrono::milliseconds(250)) {
@@ -281,14 +290,14 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
     BatchChunk chunk;
     ChunkResult result;
     for (;;) {
-      Clock::time_point start = Clock::now();
+      double start = thread_cpu_seconds();
       const bool more = reader.read_chunk(rows_per_chunk, &chunk);
-      times.read += seconds_since(start);
+      times.read += thread_cpu_seconds() - start;
       if (!more) break;
-      start = Clock::now();
+      start = thread_cpu_seconds();
       result.by_status.clear();
       process_chunk(chunk, job, &result);
-      times.work += seconds_since(start);
+      times.work += thread_cpu_seconds() - start;
       if (!writer.write(result)) {
         broke_off = true;
         break;
@@ -314,10 +323,10 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
         if (broke_off || next >= first + slots.size()) return;  // nothing left to start
         Slot& slot = slots[next++ - first];
         lock.unlock();
-        const Clock::time_point start = Clock::now();
+        const double start = thread_cpu_seconds();
         process_chunk(slot.input, job, &slot.output);
         slot.input = {};
-        work_seconds[t] += seconds_since(start);
+        work_seconds[t] += thread_cpu_seconds() - start;
         lock.lock();
         slot.finished = true;
         if (writing) continue;  // the writer will find it
@@ -346,9 +355,9 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
       changed.wait(lock, [&] { return slots.size() < most_held || broke_off; });
       if (broke_off) break;
       lock.unlock();
-      const Clock::time_point start = Clock::now();
+      const double start = thread_cpu_seconds();
       const bool more = reader.read_chunk(rows_per_chunk, &chunk);
-      times.read += seconds_since(start);
+      times.read += thread_cpu_seconds() - start;
       lock.lock();
       if (!more) break;
       slots.emplace_back().input = std::move(chunk);
@@ -410,8 +419,8 @@ int run_batch_command(BatchReader& reader, const BatchJob& job, std::ostream& ou
   if (!summary.error.empty()) err << job.command << ": " << summary.error << '\n';
   if (how.times)
     err << fmt::format(
-        "{}: times: {:.3f} s wall, {:.3f} s reading (main thread), {:.3f} s writing (in "
-        "order), {:.3f} s parsing, computing and formatting (all workers)\n",
+        "{}: times: {:.3f} s wall; CPU: {:.3f} s reading (main thread), {:.3f} s writing "
+        "(in order), {:.3f} s parsing, computing and formatting (all workers)\n",
         job.command, times.wall, times.read, times.write, times.work);
   err << summary_line(job.command, summary) << '\n';
   return summary.error.empty() && summary.failed == 0 ? kExitOk : kExitFailed;

@@ -106,8 +106,10 @@ struct BatchSummary {
   std::string error;                        // the input or output broke off: why
 };
 
-// Where the time of a batch went (seconds): reading on the main thread, writing (in
-// input order, one writer at a time), and the workers' parsing, computing and formatting.
+// Where the time of a batch went: the CPU seconds of reading on the main thread, of
+// writing (in input order, one writer at a time) and of the workers' parsing, computing
+// and formatting (summed over them), and the wall-clock seconds of the whole. CPU time
+// does not count the waits for a core on a loaded machine, so the shares hold there too.
 struct BatchTimes {
   double read = 0.0;
   double write = 0.0;

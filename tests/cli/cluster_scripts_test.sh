@@ -15,9 +15,10 @@ for i in 0 1 2 3 4 5 6; do
     "$i" "0.$((4 + i))" "0.$((5 + i % 3))" "2.$((1 + i))" $((i % 2))
   [ "$i" = 3 ] && echo ""  # a blank line: skipped, not a problem
 done > "$work/problems.jsonl"
-options=(--method exact --max-evaluations 150 --samples 8 --alternatives 0 --seed 3)
+# (solve_array.sbatch adds --max-time 3600; the unsharded run gets it too.)
+options=(--method exact --max-evaluations 250 --samples 8 --alternatives 0 --seed 3)
 rc=0
-"$CUEPLAN_BINARY" solve --batch "$work/problems.jsonl" --threads 2 "${options[@]}" \
+"$CUEPLAN_BINARY" solve --batch "$work/problems.jsonl" --threads 2 --max-time 3600 "${options[@]}" \
   > "$work/whole.jsonl" 2> "$work/whole.err" || rc=$?
 [ "$rc" -le 1 ] || { echo "unsharded run failed ($rc):"; cat "$work/whole.err"; exit 1; }
 
