@@ -438,7 +438,7 @@ TEST(SimulateBatch, OutputIsTheSameForAnyThreadCount) {
   std::string text = "speed,aim_deg,topspin_k,sidespin_k\n";
   for (int i = 0; i < 40; ++i)
     text += std::to_string(0.4 + 0.1 * i) + "," + std::to_string(-170.0 + 9.0 * i) + "," +
-            std::to_string(-1.0 + 0.05 * i) + "," + std::to_string(0.8 - 0.04 * i) + "\n";
+            std::to_string(-0.9 + 0.045 * i) + "," + std::to_string(0.7 - 0.035 * i) + "\n";
   write_text(input, text);
   const std::string args =
       "simulate '" + problem_path("blocked_direct_route") + "' --batch '" + input.string() + "'";
