@@ -12,6 +12,7 @@
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/route.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "cueplan/problems/stroke_ranges.hpp"
 #include "exit_codes.hpp"
 #include "field_names.hpp"
 #include "output_file.hpp"
@@ -317,6 +318,8 @@ int RouteCommand::run(std::ostream& out, std::ostream& err) const {
   prob::Problem problem;
   plan::RouteOptions o;
   if (const int code = read(err, &problem, &o); code != kExitOk) return code;
+  for (const std::string& warning : prob::problem_warnings(problem))
+    err << kCommandName << ": warning: " << warning << '\n';
 
   const plan::RouteResult result = plan::plan_route(problem, o);
   if (result.status == plan::RouteStatus::invalid_input) return usage(result.message);

@@ -224,6 +224,15 @@ const ordered_json& options_of(const ordered_json& request) {
   return *options;
 }
 
+// A reply's `warnings`: what is implausible in the problem's limits and the stroke.
+void add_warnings(ApiReply& reply, const prob::Problem& problem,
+                  const std::vector<std::string>& more = {}) {
+  std::vector<std::string> all;
+  for (const std::string& w : prob::problem_warnings(problem)) all.push_back("problem." + w);
+  all.insert(all.end(), more.begin(), more.end());
+  if (!all.empty()) reply.body["warnings"] = all;
+}
+
 prob::Problem read_problem(const ordered_json& request) {
   const ordered_json* value = member(request, "problem");
   if (value == nullptr)
@@ -422,6 +431,7 @@ ApiReply Api::solve(std::string_view body) const {
     ApiReply reply;
     reply.body = solve_json(problem, options, result, "");
     if (in.time_clamped) reply.body["note"] = time_note(in, limits_);
+    add_warnings(reply, problem);
     return reply;
   });
 }
@@ -495,7 +505,7 @@ ApiReply Api::simulate(std::string_view body) const {
       throw library_error(result.error, result.message);
     ApiReply reply;
     reply.body = simulate_json(problem, shot, simulation, result, "");
-    if (!warnings.empty()) reply.body["warnings"] = warnings;
+    add_warnings(reply, problem, warnings);
     return reply;
   });
 }
@@ -561,6 +571,10 @@ ApiReply Api::spinmap(std::string_view body) const {
     reply.body = spinmap_json(problem, map, source, simulation, "", seconds);
     reply.body["cells"] = spinmap_cells_json(problem, map);
     if (in.time_clamped && !stroke_given) reply.body["note"] = time_note(in, limits_);
+    add_warnings(reply, problem,
+                 prob::check_stroke_ranges(phys::Shot{v, aim_deg, 0.0, 0.0},
+                                           {"speed", "aim_deg", nullptr, nullptr, nullptr})
+                     .warnings);
     return reply;
   });
 }

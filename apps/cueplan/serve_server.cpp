@@ -682,6 +682,10 @@ struct WebServer::Impl {
       }
       return httplib::Server::HandlerResponse::Unhandled;
     });
+    // A response that closes its connection does not also offer to keep it alive.
+    http.set_post_routing_handler([](const Request&, Response& res) {
+      if (res.get_header_value("Connection") == "close") res.headers.erase("Keep-Alive");
+    });
     // Every failure httplib answers itself (404, 413, ...) gets a JSON body too.
     http.set_error_handler(httplib::Server::HandlerWithResponse(
         [this](const Request&, Response& res) {

@@ -12,6 +12,7 @@
 #include "cueplan/draw/table.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "cueplan/problems/stroke_ranges.hpp"
 #include "exit_codes.hpp"
 #include "impact_setup.hpp"
 #include "output_file.hpp"
@@ -730,6 +731,8 @@ int SimulateCommand::run(std::ostream& out, std::ostream& err) const {
                              out, err);
   }
 
+  for (const std::string& warning : prob::problem_warnings(problem))
+    err << kCommandName << ": warning: " << warning << '\n';
   for (const std::string& warning : shot_warnings(shot, kShotFlagNames))
     err << kCommandName << ": warning: " << warning << '\n';
   const phys::ShotResult result = phys::simulate(problem.scene, problem.cue_ball, shot, options);

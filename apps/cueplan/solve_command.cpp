@@ -15,6 +15,7 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "cueplan/problems/stroke_ranges.hpp"
 #include "exit_codes.hpp"
 #include "output_file.hpp"
 #include "shot_report.hpp"
@@ -398,6 +399,8 @@ int SolveCommand::run(std::ostream& out, std::ostream& err) const {
 
   Inputs inputs;
   if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);
+  for (const std::string& warning : prob::problem_warnings(*inputs.loaded.problem))
+    err << kCommandName << ": warning: " << warning << '\n';
   phys::SimulationOptions& simulation = inputs.simulation;
   plan::PlannerOptions& options = inputs.options;
   const prob::Problem& problem = *inputs.loaded.problem;

@@ -17,6 +17,7 @@
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/spin_map.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "cueplan/problems/stroke_ranges.hpp"
 #include "exit_codes.hpp"
 #include "output_file.hpp"
 #include "cueplan/physics/parallel.hpp"
@@ -461,6 +462,8 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
 
   Inputs inputs;
   if (std::string why = read_inputs(&inputs); !why.empty()) return usage(why);
+  for (const std::string& warning : prob::problem_warnings(*inputs.loaded.problem))
+    err << kCommandName << ": warning: " << warning << '\n';
   const PictureFormat format = inputs.format;
   const bool speed_given = inputs.speed_given;
   phys::SimulationOptions& simulation = inputs.simulation;

@@ -46,6 +46,10 @@ void spin_into(StrokeRangeCheck& c, double spin, const char* name, const std::st
 
 }  // namespace
 
+std::vector<std::string> problem_warnings(const Problem& problem) {
+  return check_speed_range(problem.limits.speed_max, "limits.speed[1]").warnings;
+}
+
 StrokeRangeCheck check_speed_range(double speed, const char* name) {
   StrokeRangeCheck c;
   speed_into(c, speed, name);

@@ -429,6 +429,24 @@ TEST(Simulate, ShotOutsideTheProblemLimitsIsSimulatedAndNamed) {
   EXPECT_NE(run.out.find("outside the problem's limits: speed"), std::string::npos) << run.out;
 }
 
+// What no cue can give is refused naming the flag; what few players can play is played
+// with a warning (problems/stroke_ranges.hpp, the check the server and problem files use).
+TEST(Simulate, StrokesBeyondWhatACueGivesAreRefusedAndImplausibleOnesWarned) {
+  const std::string problem = "simulate '" + problem_path("one_rail_position") + "' --aim 30";
+  const ProcessResult miscue = cueplan(problem + " --speed 1 --topspin-k 1 --sidespin-k 0.9");
+  EXPECT_EQ(miscue.exit_code, 2);
+  EXPECT_NE(miscue.err.find("--topspin-k 1 with --sidespin-k 0.9 gives spin"), std::string::npos)
+      << miscue.err;
+  EXPECT_NE(miscue.err.find("0.54 ball radii"), std::string::npos) << miscue.err;
+  const ProcessResult too_fast = cueplan(problem + " --speed 1e308");
+  EXPECT_EQ(too_fast.exit_code, 2);
+  EXPECT_NE(too_fast.err.find("--speed must be at most 20 m/s"), std::string::npos) << too_fast.err;
+  const ProcessResult fast = cueplan(problem + " --speed 14");
+  EXPECT_LE(fast.exit_code, 1) << fast.err;
+  EXPECT_NE(fast.err.find("warning: --speed 14 m/s is faster than a break shot"), std::string::npos)
+      << fast.err;
+}
+
 // ---------------------------------------------------------------------------
 // --svg
 
@@ -540,7 +558,7 @@ TEST(SimulateBatch, OutputIsTheSameForAnyThreadCount) {
   std::string text = "speed,aim_deg,topspin_k,sidespin_k\n";
   for (int i = 0; i < 40; ++i)
     text += std::to_string(0.4 + 0.1 * i) + "," + std::to_string(-170.0 + 9.0 * i) + "," +
-            std::to_string(-1.0 + 0.05 * i) + "," + std::to_string(0.8 - 0.04 * i) + "\n";
+            std::to_string(-0.9 + 0.045 * i) + "," + std::to_string(0.7 - 0.035 * i) + "\n";
   write_text(input, text);
   const std::string args =
       "simulate '" + problem_path("blocked_direct_route") + "' --batch '" + input.string() + "'";

@@ -621,6 +621,11 @@ const BadInput kBadInputs[] = {
      "limits.speed[0]", "positive"},
     {"SpinLimitNegative", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  spin: -1\n", 4,
      "limits.spin", "positive"},
+    // What no cue can give (problems/stroke_ranges.hpp): a tip 1.2 R off centre, 50 m/s.
+    {"SpinLimitBeyondTheMiscueLimit", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  spin: 3\n", 4,
+     "limits.spin", "1.20 ball radii from the ball's centre"},
+    {"SpeedLimitNoCueGives", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  speed: [0.2, 50]\n",
+     4, "limits.speed[1]", "must be at most 20 m/s"},
     {"NonIntegerCushions", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  cushions: [1.5, 3]\n", 4,
      "limits.cushions[0]", "whole number"},
     {"NonIntegerCushionCount", "cue_ball: [1, 1]\ntarget: [2, 1]\nlimits:\n  cushions: 2.5\n", 4,

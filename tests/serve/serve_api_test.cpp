@@ -905,6 +905,14 @@ TEST(ServeAbuse, NumericExtremesAre400NamingTheField) {
   std::cout << "[ measured ] numeric extremes: " << answered << " of 23 answered 400 naming the field\n";
 
   // Implausible but possible: played, with a warning naming the field.
+  p["limits"] = {{"speed", {0.2, 14}}};
+  const Answer quick = post(server, "/api/solve",
+                            json{{"problem", p}, {"options", {{"max_evaluations", 300}, {"samples", 0}}}});
+  ASSERT_EQ(quick.status, 200) << quick.raw;
+  ASSERT_TRUE(quick.body.contains("warnings")) << quick.raw;
+  EXPECT_NE(quick.body["warnings"][0].get<std::string>().find("problem.limits.speed[1] 14 m/s is faster than a break shot"),
+            std::string::npos)
+      << quick.raw;
   const Answer fast = simulate(R"({"speed": 14, "aim_deg": 0})");
   ASSERT_EQ(fast.status, 200) << fast.raw;
   ASSERT_TRUE(fast.body.contains("warnings")) << fast.raw;

@@ -149,6 +149,8 @@ def check_plan(driver, shots):
         fail(f"the shipped example was not solved: {result!r}")
     print(f"plan: {text}; path drawn to {drawn[0]:.4f}, {drawn[1]:.4f} m")
     wait_for(driver, "the plan's paths", lambda d: not d.find_element(By.ID, "busy").is_displayed())
+    wait_for(driver, "the animation's end", lambda d: d.find_element(By.ID, "table")
+             .get_attribute("data-anim") == "done", timeout=30)
     driver.save_screenshot(os.path.join(shots, "serve_plan.png"))
 
 
@@ -336,6 +338,8 @@ def check_pot_example(driver, shots):
     pockets = [o.text for o in Select(driver.find_element(By.ID, "pot-pocket")).options]
     if "top-right corner" not in pockets or not any("middle pocket" in p for p in pockets):
         fail(f"the pockets are not named as players name them: {pockets}")
+    wait_for(driver, "the animation's end", lambda d: d.find_element(By.ID, "table")
+             .get_attribute("data-anim") == "done", timeout=30)
     print(f"pot: {text}")
     print(f"colours: {[(c['ball'], c['strokes'][0]) for c in colours]}; pockets {pockets}")
     driver.save_screenshot(os.path.join(shots, "serve_pot.png"))
@@ -378,6 +382,7 @@ def check_animation(driver):
     wall = time.monotonic() - t0
     if not 0.1 * wall < t_slow < 0.4 * wall:
         fail(f"at 0.25x the shot's clock reads {t_slow:.3f} s after {wall:.3f} s")
+    Select(driver.find_element(By.ID, "anim-rate")).select_by_value("1")
     print(f"animation: cue ball from {start[0]:.3f},{start[1]:.3f} via {middle[0]:.3f},{middle[1]:.3f} "
           f"(t = {t_middle:.2f} s) to {final[0]:.4f},{final[1]:.4f} m = the path's end; {duration:.2f} s "
           f"shot; at 0.25x {t_slow:.3f} s of shot in {wall:.3f} s")

@@ -34,9 +34,12 @@ const state = {
 };
 
 const fixed = (v, digits) => (Number.isFinite(v) ? v.toFixed(digits) : "-");
+// A tip offset in ball radii R, with the players' "tips" the plan's words count in (a
+// tip is a quarter of R: planner/src/stroke_terms.cpp).
+const TIPS_PER_R = 4;
 const tipWords = (right, up) =>
-  `${fixed(Math.abs(right), 3)} R ${right < 0 ? "left" : "right"} of centre, ` +
-  `${fixed(Math.abs(up), 3)} R ${up < 0 ? "below" : "above"} centre`;
+  `${fixed(Math.abs(right), 3)} R (${fixed(TIPS_PER_R * Math.abs(right), 2)} tips) ${right < 0 ? "left" : "right"} of centre, ` +
+  `${fixed(Math.abs(up), 3)} R (${fixed(TIPS_PER_R * Math.abs(up), 2)} tips) ${up < 0 ? "below" : "above"} centre`;
 const cushionWord = (n) => `${n} cushion${n === 1 ? "" : "s"}`;
 
 function allowedCushions(limits) {
@@ -269,6 +272,7 @@ function setTip(offset, byHand) {
   $("tip-right").value = offset.right;
   $("tip-up").value = offset.up;
   $("tip-spin").textContent =
+    `${fixed(TIPS_PER_R * offset.right, 2)} tips right, ${fixed(TIPS_PER_R * offset.up, 2)} tips up; ` +
     `k_T = ${fixed(SPIN_PER_TIP * offset.up, 3)}, k_S = ${fixed(SPIN_PER_TIP * offset.right, 3)}`;
 }
 
@@ -286,7 +290,10 @@ function setStroke(shot) {
   $("aim").value = Math.round(1000 * shot.aim_deg) / 1000;
   const round = (v) => Math.round(1000 * v) / 1000;
   setTip({ right: round(shot.sidespin_k / SPIN_PER_TIP), up: round(shot.topspin_k / SPIN_PER_TIP) }, false);
-  $("tip-spin").textContent = `k_T = ${fixed(shot.topspin_k, 3)}, k_S = ${fixed(shot.sidespin_k, 3)}`;
+  $("tip-spin").textContent =
+    `${fixed(TIPS_PER_R * shot.sidespin_k / SPIN_PER_TIP, 2)} tips right, ` +
+    `${fixed(TIPS_PER_R * shot.topspin_k / SPIN_PER_TIP, 2)} tips up; ` +
+    `k_T = ${fixed(shot.topspin_k, 3)}, k_S = ${fixed(shot.sidespin_k, 3)}`;
   table.setAim(shot.aim_deg);
   state.strokeKnown = true;
   state.exactStroke = { speed: shot.speed, aim_deg: shot.aim_deg, topspin_k: shot.topspin_k,

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/problems/problem.hpp"
 
 namespace cueplan::problems {
 
@@ -52,5 +53,10 @@ StrokeRangeCheck check_stroke_ranges(const physics::Shot& shot, const StrokeFiel
 StrokeRangeCheck check_speed_range(double speed, const char* name);
 // One spin magnitude sqrt(k_T^2 + k_S^2) alone (a problem's spin limit).
 StrokeRangeCheck check_spin_range(double spin, const char* name);
+
+// What is implausible in a problem's limits (a top speed faster than a break shot), one
+// line each naming the file's field: "limits.speed[1] 14 m/s is faster than ...". The
+// loader refuses what is impossible; this is what it lets through with a warning.
+std::vector<std::string> problem_warnings(const Problem& problem);
 
 }  // namespace cueplan::problems
