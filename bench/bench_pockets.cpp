@@ -2,9 +2,9 @@
 // technical proofs TP 3.6 (corner) and TP 3.5 (side): the width of the band of parallel
 // lines of approach along which a slowly rolling ball drops, scanned in 0.1 mm steps of
 // lateral offset for each approach angle. Prints a Markdown table and writes the plot
-// (docs/pockets.svg by default; the first argument names another file, .svg or .png).
+// (docs/pockets.png by default; the first argument names another file, .svg or .png).
 //
-//   build/bench/bench_pockets docs/pockets.svg
+//   build/bench/bench_pockets docs/pockets.png
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -62,7 +62,7 @@ double target_size_in(const CompiledScene& scene, int pocket, double angle_deg, 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string out = argc > 1 ? argv[1] : "docs/pockets.svg";
+  const std::string out = argc > 1 ? argv[1] : "docs/pockets.png";
   const CompiledScene scene(pool_scene());
   namespace draw = cueplan::draw;
   draw::PlotPanel corner{"corner pocket (TP 3.6)", {"approach angle from the bisector (deg)", 0.0, 45.0, 5.0},

@@ -64,6 +64,13 @@ std::string event_detail(const prob::Problem& problem, const phys::ShotResult& r
         text += " (above the rigid-cushion limit)";
       return text;
     }
+    case phys::EventType::jaw: {
+      static constexpr const char* kParts[] = {"left point", "left facing", "right facing",
+                                               "right point"};
+      const std::string part = e.cushion >= 0 && e.cushion < 4 ? kParts[e.cushion] : "jaw";
+      return "pocket " + std::to_string(e.index) + " (" + prob::pocket_name(scene, e.index) +
+             ") " + part + ", normal speed " + number(e.normal_speed, "m/s");
+    }
     case phys::EventType::pocket:
       return "pocket " + std::to_string(e.index) + " (" + prob::pocket_name(scene, e.index) +
              ") at " + point(scene.pockets.at(static_cast<size_t>(e.index)).centre);
@@ -256,6 +263,11 @@ nlohmann::ordered_json events_json(const phys::Scene& scene, const phys::ShotRes
       j["normal_speed"] = e.normal_speed;
     }
     if (e.type == phys::EventType::pocket) j["pocket"] = e.index;
+    if (e.type == phys::EventType::jaw) {
+      j["pocket"] = e.index;
+      j["jaw_part"] = e.cushion;  // 0 left point, 1 left facing, 2 right facing, 3 right point
+      j["normal_speed"] = e.normal_speed;
+    }
     if (e.type == phys::EventType::obstacle) j["obstacle"] = e.index;
     if (e.type == phys::EventType::ball_contact) {
       j["ball"] = ball_name(r, e.other);

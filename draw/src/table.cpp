@@ -553,7 +553,13 @@ void diamonds(Canvas& c, const Layout& l, const phys::Scene& scene) {
   const double half = std::clamp(0.3 * l.rail, 2.5, 5.0);
   const auto near_pocket = [&](phys::Vec2 p) {
     return std::any_of(scene.pockets.begin(), scene.pockets.end(), [&](const phys::Pocket& k) {
-      return std::hypot(k.centre.x - p.x, k.centre.y - p.y) < 0.5 * l.step + k.radius;
+      // A jawed corner pocket stands where its cushion lines meet, half a mouth beyond
+      // the mouth's centre (a capture circle's place).
+      phys::Vec2 at = k.centre;
+      if (k.jaws && k.jaws->cushion[0] != k.jaws->cushion[1])
+        at = {k.centre.x + 0.5 * k.jaws->shape.mouth * k.jaws->inward.x,
+              k.centre.y + 0.5 * k.jaws->shape.mouth * k.jaws->inward.y};
+      return std::hypot(at.x - p.x, at.y - p.y) < 0.5 * l.step + k.radius;
     });
   };
   const auto diamond = [&](double x, double y, bool along_x) {

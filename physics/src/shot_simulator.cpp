@@ -103,6 +103,7 @@ struct Jaws {
   Vec2 point[2];
   double point_reach = 0.0;  // point_radius + R cos(theta)
   detail::Box box{};
+  detail::Box part_box[4]{};  // each part's contact locus, by part number
 };
 
 // Event codes of jaw contacts (NextEvent::which, Next::other): after the four cushions,
@@ -128,6 +129,10 @@ std::vector<Jaws> jaws_of(const Scene& s) {
       ylo = std::min(ylo, p.y - r);
       yhi = std::max(yhi, p.y + r);
     };
+    const auto box_around = [](Vec2 a, Vec2 b, double r) {
+      return detail::Box{std::min(a.x, b.x) - r, std::max(a.x, b.x) + r, std::min(a.y, b.y) - r,
+                         std::max(a.y, b.y) + r};
+    };
     for (int side = 0; side < 2; ++side) {
       JawPart& f = w.facing[side];
       f.start = j.facing_start[side];
@@ -140,6 +145,9 @@ std::vector<Jaws> jaws_of(const Scene& s) {
       grow(w.point[side], w.point_reach);
       grow(f.start, off);
       grow(f.start + f.length * f.dir, off);
+      // Parts 0 left point, 1 left facing, 2 right facing, 3 right point.
+      w.part_box[side == 0 ? 0 : 3] = box_around(w.point[side], w.point[side], w.point_reach);
+      w.part_box[side == 0 ? 1 : 2] = box_around(f.start, f.start + f.length * f.dir, off);
     }
     w.box = {xlo, xhi, ylo, yhi};
     out.push_back(w);
@@ -396,11 +404,16 @@ class ShotRun {
         if (hit < next.after) next = {EventType::cushion, hit, i};
       }
     }
-    for (const Jaws& w : jaws_) {
-      if (!box_meets(q, next.after, w.box)) continue;
-      for (int part = 0; part < 4; ++part) {
-        const double hit = jaw_contact(q, w, part, next.after);
-        if (hit < next.after) next = {EventType::jaw, hit, jaw_code(w.pocket, part)};
+    if (!jaws_.empty()) {
+      // The path's box over the horizon so far rules out most pockets and parts cheaply.
+      const detail::Box path = detail::box_of(q, next.after);
+      for (const Jaws& w : jaws_) {
+        if (!boxes_meet(path, w.box)) continue;
+        for (int part = 0; part < 4; ++part) {
+          if (!boxes_meet(path, w.part_box[part])) continue;
+          const double hit = jaw_contact(q, w, part, next.after);
+          if (hit < next.after) next = {EventType::jaw, hit, jaw_code(w.pocket, part)};
+        }
       }
     }
     for (size_t i = 0; i < scene_.pockets.size(); ++i) {
@@ -506,8 +519,7 @@ class ShotRun {
     return {k.centre, k.radius};
   }
 
-  static bool box_meets(const Quadratic& q, double horizon, const detail::Box& b) {
-    const detail::Box p = detail::box_of(q, horizon);
+  static bool boxes_meet(const detail::Box& p, const detail::Box& b) {
     return !(p.xhi < b.xlo || p.xlo > b.xhi || p.yhi < b.ylo || p.ylo > b.yhi);
   }
 
@@ -532,6 +544,15 @@ class ShotRun {
   double jaw_contact(const Quadratic& q, const Jaws& w, int part, double horizon) const {
     const int side = jaw_side(part);
     if (is_point(part)) {
+      // A straight path (rolling, or sliding with the slip along the motion) that passes
+      // the circle by more than its radius never meets it: no quartic to solve.
+      const double speed = std::hypot(q.a1.x, q.a1.y);
+      const double bend = q.a1.x * q.a2.y - q.a1.y * q.a2.x;
+      if (speed > 0.0 && std::abs(bend) <= 1e-12 * speed * std::hypot(q.a2.x, q.a2.y)) {
+        const Vec2 r = q.a0 - w.point[side];
+        const double miss = std::abs(q.a1.x * r.y - q.a1.y * r.x) / speed;
+        if (miss > w.point_reach * (1.0 + 1e-9)) return kNever;
+      }
       // |p(t) - P|^2 - reach^2, a quartic: contact where it falls through zero.
       double c[5];
       detail::distance_quartic(q.a0 - w.point[side], q.a1, q.a2, w.point_reach, c);

@@ -302,8 +302,12 @@ TEST(RankingTest, SideThatChangesNothingIsNotRecommended) {
                                      s.shot.topspin_k * s.shot.topspin_k);
     const physics::ShotResult a = physics::simulate(p.scene, p.cue_ball, s.shot);
     const physics::ShotResult b = physics::simulate(p.scene, p.cue_ball, with_side);
-    EXPECT_NEAR(a.final_position.x, b.final_position.x, 1e-9);
-    EXPECT_NEAR(a.final_position.y, b.final_position.y, 1e-9);
+    // A stroke that meets a pocket's jaw is a cushion contact there, where side acts:
+    // the premise holds for the strokes that meet nothing.
+    if (a.balls[0].jaw_hits == 0) {
+      EXPECT_NEAR(a.final_position.x, b.final_position.x, 1e-9);
+      EXPECT_NEAR(a.final_position.y, b.final_position.y, 1e-9);
+    }
     EXPECT_LT(std::abs(s.shot.sidespin_k), physics::kSpinPerTipOffset / 32.0);
     EXPECT_NE(s.family.find("no side"), std::string::npos);
   }
@@ -315,7 +319,11 @@ TEST(RankingTest, SideThatChangesNothingIsNotRecommended) {
 // succeeds at least as often as the file's stroke and measurably more often than the
 // old answer.
 TEST(RankingTest, ThreeRailAnswerSucceedsAtLeastAsOftenAsThePlainFollowStroke) {
-  const problems::Problem p = shipped("three_rail_position.yaml");
+  // On the capture-circle pockets the strokes above were measured on (the file's
+  // default is now the snooker preset's jaws, whose corners let other strokes through).
+  problems::Problem p = shipped("three_rail_position.yaml");
+  p.scene.pockets = physics::standard_pockets(p.scene.length, p.scene.width,
+                                              physics::kDefaultPocketRadius);
   const PlannerOptions o = exact_options();
   const PlanResult r = plan(p, o);
   ASSERT_EQ(r.status, PlanStatus::solved) << r.message;

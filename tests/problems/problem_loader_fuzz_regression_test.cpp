@@ -66,7 +66,7 @@ TEST(ProblemLoaderFuzzRegression, MisspeltKeyStillNamesItself) {
 TEST(ProblemLoaderFuzzRegression, QuotedValueWithNewlineIsShownEscaped) {
   const LoadResult result = parse_problem(
       "table: {pockets: \"some\\nwhere\"}\ncue_ball: [1, 0.5]\ntarget: [2, 0.5]\n", "<fuzz>");
-  expect_one_line_error(result, "<fuzz>:1: table.pockets: must be standard or none");
+  expect_one_line_error(result, "<fuzz>:1: table.pockets: must be none, standard, snooker, pool, carom");
   EXPECT_NE(result.error.find("\"some\\nwhere\""), std::string::npos) << result.error;
 }
 

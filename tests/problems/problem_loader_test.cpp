@@ -51,7 +51,7 @@ constexpr const char* kFullExample = R"(name: one-rail position            # opt
 table:                             # optional; defaults: a snooker table
   length: 3.569                    # m between cushion noses (x)
   width: 1.778                     # m (y)
-  pockets: standard                # standard or none
+  pockets: standard                # none, standard, snooker, pool, carom or a mapping
   pocket_radius: 0.045             # m, capture circle around each pocket point
 ball: {radius: 0.02625, mass: 0.1406}
 physics: {mu_slide: 0.212, mu_roll: 0.01, mu_spin: 0.0117, mu_cushion: 0.14,
