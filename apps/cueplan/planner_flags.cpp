@@ -24,6 +24,7 @@ const std::initializer_list<FieldName> kPlannerFlags = {
     {{"noise", "scale"}, "--noise"},
     {{"noise", "tip_offset_relative"}, "--tip-offset-relative"},
     {{"noise", "squirt_judgement"}, "--squirt-judgement"},
+    {{"noise", "bridge_length"}, "--bridge-length"},
     {{"robustness_samples"}, "--samples"},
     {{"max_alternatives"}, "--alternatives"},
     {{"simulation", "impact_accuracy"}, "--accuracy"},
@@ -90,6 +91,12 @@ void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
       ->type_name("F")
       ->capture_default_str()
       ->group(group);
+  c.add_option("--bridge-length", args->bridge_length,
+               "Execution noise: a sideways tip error turns the cue about the bridge this far "
+               "behind the tip (m; docs/squirt.md), >= 0; 0 shifts the cue without turning it")
+      ->type_name("M")
+      ->capture_default_str()
+      ->group(group);
   c.add_flag("--robust", args->robust,
              "Maximise the success probability under the noise rather than the nominal miss")
       ->group(group);
@@ -146,6 +153,7 @@ std::string read_planner_options(const PlannerArgs& args, int threads,
   options->noise.scale = args.noise;
   options->noise.tip_offset_relative = args.tip_offset_relative;
   options->noise.squirt_judgement = args.squirt_judgement;
+  options->noise.bridge_length = args.bridge_length;
   options->robust = args.robust;
   options->robustness_samples = args.samples;
   options->enforce_rigid_limit = args.enforce_rigid_limit;
@@ -163,7 +171,8 @@ std::string noise_text(const plan::NoiseModel& noise) {
          number(1000.0 * noise.tip_offset * noise.scale) + " mm + " +
          number(100.0 * noise.tip_offset_relative * noise.scale) + " % of the offset, squirt " +
          number(100.0 * noise.squirt_judgement * noise.scale) +
-         " % misjudged (standard deviations; --noise " +
+         " % misjudged, cue pivoting " + number(1000.0 * noise.bridge_length) +
+         " mm behind the tip (standard deviations; --noise " +
          number(noise.scale) + ")";
 }
 

@@ -29,6 +29,7 @@ struct PlannerArgs {
   double noise = 1.0;  // multiplies every deviation of the NoiseModel
   double tip_offset_relative = planner::NoiseModel{}.tip_offset_relative;  // --tip-offset-relative
   double squirt_judgement = planner::NoiseModel{}.squirt_judgement;        // --squirt-judgement
+  double bridge_length = planner::NoiseModel{}.bridge_length;              // --bridge-length
   bool robust = false;
   int samples = planner::PlannerOptions{}.robustness_samples;
   bool enforce_rigid_limit = false;

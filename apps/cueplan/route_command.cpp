@@ -140,7 +140,8 @@ nlohmann::ordered_json route_json(const prob::Problem& problem, const plan::Rout
                     {"speed", o.noise.speed},
                     {"tip_offset", o.noise.tip_offset},
                     {"tip_offset_relative", o.noise.tip_offset_relative},
-                    {"squirt_judgement", o.noise.squirt_judgement}}},
+                    {"squirt_judgement", o.noise.squirt_judgement},
+                    {"bridge_length", o.noise.bridge_length}}},
                   {"samples", o.robustness_samples},
                   {"intermediate_zone_m", o.intermediate_zone_m}};
   if (!svg_file.empty()) j["svg"] = svg_file;

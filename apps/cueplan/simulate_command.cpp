@@ -348,6 +348,7 @@ nlohmann::ordered_json simulate_json(const prob::Problem& problem, const phys::S
                   {"tip_offset", n.tip_offset},
                   {"tip_offset_relative", n.tip_offset_relative},
                   {"squirt_judgement", n.squirt_judgement},
+                  {"bridge_length", n.bridge_length},
                   {"seed", success->seed}};
   }
   j["max_cushion_normal_speed"] = r.max_cushion_normal_speed;

@@ -192,16 +192,17 @@ PotAim::Aimed PotAim::aim(const Task& task, const physics::Shot& shot,
     ++out.simulations;
     return direction_error(out.result, nullptr, lateral_m);
   };
-  // The geometric slope of the pot's ball's direction in the aim (deg per deg).
+  // The cue's line is turned from the ball's by the squirt: start that much the other way.
+  const double squirt = squirt_of(task.problem, shot);
+  // The geometric slope of the pot's ball's direction in the aim (deg per deg), taken
+  // where the cue ball goes: the cue's aim turned by the squirt.
   const auto gain = [&](double aim_deg) {
     constexpr double h = 1e-4;
-    const std::optional<double> a = geometric_direction(aim_deg - h);
-    const std::optional<double> b = geometric_direction(aim_deg + h);
+    const std::optional<double> a = geometric_direction(aim_deg + squirt - h);
+    const std::optional<double> b = geometric_direction(aim_deg + squirt + h);
     if (!a || !b) return 0.0;
     return wrap_degrees(*b - *a) / (2.0 * h);
   };
-  // The cue's line is turned from the ball's by the squirt: start that much the other way.
-  const double squirt = squirt_of(task.problem, shot);
   double x = ghost_aim_deg_ + offset_hint_deg - squirt;
   std::optional<double> e = play(x);
   if (!e && offset_hint_deg != 0.0) {

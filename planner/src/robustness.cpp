@@ -68,6 +68,11 @@ bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseM
   *out = shot;
   out->speed = shot.speed + noise.speed * s * draw.speed;
   out->aim_deg = shot.aim_deg + aim_sd * draw.aim;
+  if (noise.bridge_length > 0.0) {
+    // The cue pivots at the bridge: the tip d (m) to the right turns it clockwise.
+    const double d_right = dk_right * draw.right * radius / physics::kSpinPerTipOffset;
+    out->aim_deg -= d_right / noise.bridge_length * (180.0 / std::numbers::pi);
+  }
   out->sidespin_k = shot.sidespin_k + dk_right * draw.right;
   out->topspin_k = shot.topspin_k + dk_up * draw.up;
   if (!(out->speed > 0.0)) return false;

@@ -45,7 +45,8 @@ class NoiseStream {
 // the aim errs by noise.aim_deg and, with side, by the misjudged squirt (squirt_deg, the
 // intended stroke's, times noise.squirt_judgement; the two in quadrature, one draw); the
 // tip offset each way by noise.tip_offset plus noise.tip_offset_relative of the offset
-// intended that way. False for a miscue (tip offset beyond miscue_k) or a stroke
+// intended that way, the sideways error turning the cue about the bridge
+// (noise.bridge_length). False for a miscue (tip offset beyond miscue_k) or a stroke
 // without speed.
 bool noisy_stroke(const physics::Shot& shot, const NoiseDraw& draw, const NoiseModel& noise,
                   double radius, double miscue_k, double squirt_deg, physics::Shot* out);

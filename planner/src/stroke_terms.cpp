@@ -100,6 +100,8 @@ physics::Validation NoiseModel::validate() const {
     return invalid({"tip_offset_relative"}, "must be finite and not negative", tip_offset_relative);
   if (!std::isfinite(squirt_judgement) || squirt_judgement < 0.0)
     return invalid({"squirt_judgement"}, "must be finite and not negative", squirt_judgement);
+  if (!std::isfinite(bridge_length) || bridge_length < 0.0)
+    return invalid({"bridge_length"}, "must be finite and not negative (m)", bridge_length);
   if (!std::isfinite(scale) || scale < 0.0)
     return invalid({"scale"}, "must be finite and not negative", scale);
   return {};

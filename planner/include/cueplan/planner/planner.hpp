@@ -53,6 +53,12 @@ struct NoiseModel {
   // feel: that allowance errs by this fraction of the squirt (a deviation added to the
   // aim's in quadrature). Zero for a centre-ball stroke.
   double squirt_judgement = 0.1;
+  // A tip offset error comes from the back hand's sway, which pivots the cue at the
+  // bridge this far behind the tip (m): a tip that lands d to the right of where it
+  // should has the cue turned d / bridge_length to the right as well, against the squirt
+  // that d adds (back-hand english; docs/squirt.md). 0: the cue shifts sideways instead,
+  // its direction unchanged.
+  double bridge_length = 0.25;
   double scale = 1.0;          // multiplies every deviation (--noise)
   // Empty when usable; otherwise the first broken rule, fields named as these members.
   physics::Validation validate() const;
