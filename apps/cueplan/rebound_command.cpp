@@ -69,8 +69,11 @@ void write_text(std::ostream& out, const phys::CushionParams& params, const Inci
                                       std::to_string(r.rhs_evaluations) + work);
   line("impulse", "compression " + number(r.impulse_compression, "N s") + ", total " +
                       number(r.impulse_total, "N s"));
-  line("work",
-       "compression " + number(r.work_compression, "J") + ", total " + number(r.work_total, "J"));
+  if (r.method_used == phys::ImpactMethod::closed_form)
+    line("work", "none (Newton's restitution: the model has no work integral)");
+  else
+    line("work",
+         "compression " + number(r.work_compression, "J") + ", total " + number(r.work_total, "J"));
   line("at start", std::string("cushion ") +
                        (r.cushion_slipping_at_start ? "slipping" : "sticking") + ", table " +
                        (r.table_slipping_at_start ? "slipping" : "sticking (rolling)"));

@@ -399,10 +399,11 @@ void write_trace_csv(std::ostream& out, const phys::ShotTrace& trace,
   std::string line;
   for (const phys::BallSample& s : trace.samples) {
     line.clear();
-    fmt::format_to(std::back_inserter(line), "{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},",
+    // Shortest forms that read back to the same doubles.
+    fmt::format_to(std::back_inserter(line), "{},{},{},{},{},{},",
                    s.time, r.balls[static_cast<size_t>(s.ball)].name, s.position.x, s.position.y,
                    s.velocity.x, s.velocity.y);
-    fmt::format_to(std::back_inserter(line), "{:.17g},{:.17g},{:.17g},{},{}\n", s.spin.x,
+    fmt::format_to(std::back_inserter(line), "{},{},{},{},{}\n", s.spin.x,
                    s.spin.y, s.spin.z, phys::to_string(s.motion),
                    s.event ? phys::to_string(*s.event) : "");
     out << line;
