@@ -6,6 +6,8 @@
 // Everything simulates with the exact impact method, so the suite needs no table cache.
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -83,7 +85,8 @@ TEST(PotPlannerTest, SolvesKnownStrokePots) {
     ASSERT_TRUE(problems::check_stroke(k.problem, k.shot, w).solves()) << k.problem.name;
     const PlanResult r = plan(k.problem, options());
     if (r.status != PlanStatus::solved) {
-      ADD_FAILURE() << k.problem.name << " not solved (a miss allowed below 95 %): " << r.message;
+      // A miss is allowed (the count below holds the rate); say which one.
+      std::cerr << k.problem.name << " not solved: " << r.message << "\n";
       continue;
     }
     ++solved;
