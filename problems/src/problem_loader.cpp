@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "cueplan/problems/presets.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "yaml_fields.hpp"
 
@@ -70,12 +71,14 @@ std::string read_name(const Mapping& root, const std::string& source) {
   return stem.empty() ? std::string("problem") : stem;
 }
 
-// table: length, width (m), pockets (standard | none), pocket_radius (m).
-void read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+// table: a preset's name (carom), or length, width (m), pockets (standard | none),
+// pocket_radius (m), and `preset` (read_table_preset) under which they override it.
+void read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene,
+                bool standard_pockets = true) {
   double pocket_radius = kDefaultPocketRadius;
-  bool standard_pockets = true;
   if (const std::optional<Field> table = root.find("table")) {
-    const Mapping m(*table, {"length", "width", "pockets", "pocket_radius"}, lines);
+    if (table->value.IsScalar()) return;  // a preset's name: read_table_preset set it all
+    const Mapping m(*table, {"preset", "length", "width", "pockets", "pocket_radius"}, lines);
     if (auto f = m.find("length")) scene.length = detail::positive_number(*f);
     if (auto f = m.find("width")) scene.width = detail::positive_number(*f);
     if (auto f = m.find("pockets")) {
@@ -90,6 +93,29 @@ void read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
   // Four corners and the middles of the long cushions y = 0 and y = width (kPocketNames).
   if (standard_pockets)
     scene.pockets = physics::standard_pockets(scene.length, scene.width, pocket_radius);
+}
+
+// table: carom, or table: {preset: carom, ...}: the match table and its constants
+// (carom_scene()), before the file's own table, ball and physics fields override them.
+// Returns whether a preset was applied.
+bool read_table_preset(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+  const std::optional<Field> table = root.find("table");
+  if (!table) return false;
+  std::optional<Field> name;
+  if (table->value.IsScalar()) {
+    name = *table;
+  } else if (table->value.IsMap() && table->value["preset"]) {
+    lines[table->path + ".preset"] = table->line;
+    name = Field{table->value["preset"], table->path + ".preset", table->line};
+  }
+  if (!name) return false;
+  if (!name->value.IsScalar())
+    detail::fail(*name, "must be a preset's name (carom), got " + detail::describe_value(name->value));
+  detail::one_of(*name, {"carom"});
+  const std::vector<physics::ObjectBall> balls = scene.balls;
+  scene = carom_scene();
+  scene.balls = balls;
+  return true;
 }
 
 // ball: radius (m), mass (kg). Keeps the rest of the cushion parameters at their defaults.
@@ -273,8 +299,11 @@ Problem read_problem(const Field& document, const std::string& source) {
   problem.name = read_name(root, source);
 
   physics::Scene& scene = problem.scene;
-  read_table(root, lines, scene);
+  const bool preset = read_table_preset(root, lines, scene);
+  read_table(root, lines, scene, /*standard_pockets=*/!preset);
   read_ball(root, lines, scene);
+  // A preset's cushion keeps its own nose height unless physics.cushion_height says otherwise.
+  if (preset) scene.ball_and_cushion.cushion_height = kCaromCushionHeight;
   read_physics(root, lines, scene);
   read_obstacles(root, scene, lines);
   read_balls(root, lines, scene);
@@ -364,6 +393,57 @@ int second_document_line(const std::string& text) {
 }
 
 }  // namespace
+
+physics::Scene carom_scene() {
+  physics::Scene scene;
+  scene.length = 2.84;  // UMB match table: playing surface 2.84 x 1.42 m
+  scene.width = 1.42;
+  scene.pockets.clear();
+  physics::CushionParams& c = scene.ball_and_cushion;
+  c.radius = 0.03075;  // 61.5 mm ball (UMB: 61 to 61.5 mm)
+  c.mass = 0.21;       // UMB: 205 to 220 g
+  c.cushion_height = kCaromCushionHeight;
+  c.mu_cushion = 0.14;   // Mathavan et al. 2010, ball on cushion rubber
+  c.restitution = 0.85;  // Alciatore: ball-rail restitution 0.6 to 0.9
+  physics::ClothParams& cloth = scene.cloth;
+  cloth.mu_slide = c.mu_table = 0.2;  // Alciatore: ball-cloth sliding friction 0.15 to 0.4, typ. 0.2
+  cloth.mu_roll = 0.005;  // Alciatore: 0.005 to 0.015; the low end for heated carom cloth
+  // Alciatore: sidespin decays at 5 to 15 rad/s^2; 10 rad/s^2 = 5 mu_sp g / (2 R).
+  cloth.mu_spin = 2.0 * c.radius * 10.0 / (5.0 * cloth.gravity);
+  scene.ball_contact.mu_ball = 0.05;      // Alciatore 0.03 to 0.08; Mathavan et al. 2014
+  scene.ball_contact.restitution = 0.94;  // Alciatore: ball-ball restitution 0.92 to 0.98
+  return scene;
+}
+
+std::string apply_physics_block(const std::string& yaml_text, const std::string& source_name,
+                                physics::Scene* scene) {
+  try {
+    const YAML::Node root = YAML::Load(yaml_text);
+    const int line = detail::line_of(root) > 0 ? detail::line_of(root) : 1;
+    if (!root.IsMap())
+      return source_name + ":" + std::to_string(line) +
+             ": (document): must be a mapping with a physics: block, got " +
+             detail::describe_value(root);
+    FieldLines lines;
+    const Mapping m({root, "", line}, {"name", "physics"}, lines);
+    if (!m.find("physics"))
+      return source_name + ":" + std::to_string(line) + ": physics: is missing";
+    read_physics(m, lines, *scene);
+    if (const physics::Validation error = scene->validate()) {
+      const std::string field = file_field(error->field.under({"scene"}));
+      return source_name + ":" + std::to_string(line_in_file(field, lines, line)) + ": " + field +
+             ": " + error->rule_text("");
+    }
+    return {};
+  } catch (const FieldError& e) {
+    return source_name + ":" + std::to_string(e.line) + ": " + e.field + ": " + e.message;
+  } catch (const YAML::Exception& e) {
+    return source_name + ":" + std::to_string(e.mark.is_null() ? 0 : e.mark.line + 1) +
+           ": yaml: " + detail::printable(e.msg);
+  } catch (const std::exception& e) {
+    return source_name + ": cannot be read: " + detail::printable(e.what());
+  }
+}
 
 LoadResult parse_problem(const std::string& yaml_text, const std::string& source_name) {
   try {
