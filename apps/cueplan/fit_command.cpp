@@ -85,10 +85,10 @@ draw::Picture fit_picture(const plan::ShotData& d, const phys::Scene& scene,
                          100.0 * f.rmse_cue_m, 100.0 * before.rmse_cue_m);
   ts.caption = {"fitted stroke: " + stroke_words(f),
                 "dots: recorded samples (per ball); lines: the simulation of the fitted stroke"};
-  const draw::Colour colours[3] = {draw::Colour::hex("ffffff"), draw::Colour::hex("e6c619"),
-                                   draw::Colour::hex("d62728")};
-  const draw::Colour dots[3] = {draw::Colour::hex("333333"), draw::Colour::hex("b8860b"),
-                                draw::Colour::hex("8b0000")};
+  const draw::Colour colours[3] = {draw::Colour::hex("#ffffff"), draw::Colour::hex("#e6c619"),
+                                   draw::Colour::hex("#d62728")};
+  const draw::Colour dots[3] = {draw::Colour::hex("#333333"), draw::Colour::hex("#b8860b"),
+                                draw::Colour::hex("#8b0000")};
   for (size_t k = 0; k < d.p.size(); ++k) {
     draw::DrawnBall b;
     b.name = k == 0 ? "cue ball " + d.names[k] : "ball " + d.names[k];

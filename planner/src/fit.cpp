@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <numbers>
 
 #include "cueplan/physics/parallel.hpp"
@@ -70,26 +71,38 @@ phys::Vec2 position_at(const phys::BallOutcome& ball, double ts, size_t* seg) {
   return s.at(ts);
 }
 
-phys::Shot stroke_of(const double* u, const phys::Shot& centre, const FitOptions& o,
-                     double* offset) {
+double window(const ShotData& d, const FitOptions& o) { return o.max_offset_s + d.strike_extra; }
+
+phys::Shot stroke_of(const double* u, const phys::Shot& centre, const ShotData& d,
+                     const FitOptions& o, double* offset) {
   phys::Shot s;
   s.speed = centre.speed * (1.0 + o.speed_span * (2.0 * u[0] - 1.0));
   s.aim_deg = centre.aim_deg + o.aim_span_deg * (2.0 * u[1] - 1.0);
   s.topspin_k = o.spin_max * (2.0 * u[2] - 1.0);
   s.sidespin_k = o.spin_max * (2.0 * u[3] - 1.0);
-  *offset = o.max_offset_s * u[4];
+  *offset = d.strike_lo + window(d, o) * u[4];
   // A stroke elevation (Shot::elevation_deg, when strokes have it) would be u[5].
   return s;
 }
 
-std::vector<double> unit_of(const StrokeFit& f, const phys::Shot& centre, const FitOptions& o) {
+std::vector<double> unit_of(const StrokeFit& f, const phys::Shot& centre, const ShotData& d,
+                            const FitOptions& o) {
   auto clamp01 = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.5; };
   return {clamp01(0.5 * (f.shot.speed / centre.speed - 1.0) / o.speed_span + 0.5),
           clamp01(0.5 * (f.shot.aim_deg - centre.aim_deg) / o.aim_span_deg + 0.5),
           clamp01(0.5 * f.shot.topspin_k / o.spin_max + 0.5),
           clamp01(0.5 * f.shot.sidespin_k / o.spin_max + 0.5),
-          clamp01(o.max_offset_s > 0 ? f.offset_s / o.max_offset_s : 0.0)};
+          clamp01(window(d, o) > 0 ? (f.offset_s - d.strike_lo) / window(d, o) : 0.0)};
 }
+
+}  // namespace
+
+// The loss over the samples up to t_max (s on the file's clock); the RMSEs over all.
+StrokeFit score_stroke(const phys::CompiledScene& scene, const ShotData& data,
+                       const phys::Shot& shot, double offset_s, const FitOptions& options,
+                       double t_max);
+
+namespace {
 
 struct StrokeObjective {
   const phys::CompiledScene* scene;
@@ -98,10 +111,11 @@ struct StrokeObjective {
   phys::Shot centre;
   StrokeFit best;
   int evaluations = 0;
+  double t_max = std::numeric_limits<double>::infinity();
   double operator()(const double* u) {
     double offset = 0.0;
-    const phys::Shot shot = stroke_of(u, centre, *options, &offset);
-    const StrokeFit f = evaluate_stroke(*scene, *data, shot, offset, *options);
+    const phys::Shot shot = stroke_of(u, centre, *data, *options, &offset);
+    const StrokeFit f = score_stroke(*scene, *data, shot, offset, *options, t_max);
     ++evaluations;
     if (f.loss < best.loss) best = f;
     return f.loss;
@@ -247,6 +261,19 @@ ShotDataRead prepare_shot(const Track& track, const phys::Scene& table, const Tr
       }
     }
   d.cue_start = d.p[0].front();
+  // A cue ball first seen moving after a gap in its samples was struck in the gap.
+  const double t1 = d.t[0][1];
+  if (t1 > 0.05) {
+    d.strike_lo = t1 - 0.05;
+    d.strike_extra = 0.05 - 0.02;  // window [t1 - 0.05, t1 - 0.05 + max_offset_s + 0.03]
+  }
+  d.first_other_motion = kInf;
+  for (size_t k = 1; k < d.t.size(); ++k)
+    for (size_t i = 1; i < d.t[k].size(); ++i)
+      if (std::hypot(d.p[k][i].x - d.p[k][0].x, d.p[k][i].y - d.p[k][0].y) > 0.01) {
+        d.first_other_motion = std::min(d.first_other_motion, d.t[k][i]);
+        break;
+      }
   for (size_t k = 1; k < d.p.size(); ++k)
     d.scene.balls.push_back({"ball" + d.names[k], d.p[k].front()});
   if (const phys::Validation error = d.scene.validate()) {
@@ -269,8 +296,10 @@ ShotDataRead prepare_shot(const Track& track, const phys::Scene& table, const Tr
 StrokeFit kinematic_guess(const ShotData& data, const FitOptions& options) {
   const std::vector<double>& t = data.t[0];
   const std::vector<phys::Vec2>& p = data.p[0];
-  // The first moving samples (up to 5 after the start): a least-squares line p = a + v t.
-  const size_t n = std::min<size_t>(5, t.size() - 1);
+  // The first moving samples (up to 5 after the start, and before any other ball moves,
+  // at least 2): a least-squares line p = a + v t.
+  size_t n = std::min<size_t>(5, t.size() - 1);
+  while (n > 2 && t[n] >= data.first_other_motion - 0.01) --n;
   double st = 0, sx = 0, sy = 0, stt = 0, stx = 0, sty = 0;
   for (size_t i = 1; i <= n; ++i) {
     st += t[i];
@@ -294,11 +323,12 @@ StrokeFit kinematic_guess(const ShotData& data, const FitOptions& options) {
   }
   const double speed = std::hypot(v.x, v.y);
   // The strike: where the line passes the start.
-  double t0 = 0.5 * options.max_offset_s;
+  const double lo = data.strike_lo, hi = data.strike_lo + options.max_offset_s + data.strike_extra;
+  double t0 = 0.5 * (lo + hi);
   if (speed > 0) {
     const phys::Vec2 s = data.p[0].front();
     t0 = ((s.x - a.x) * v.x + (s.y - a.y) * v.y) / (speed * speed);
-    t0 = std::clamp(t0, 0.0, options.max_offset_s);
+    t0 = std::clamp(t0, lo, hi);
   }
   // A centre-ball stroke slides, slowing at mu_s g, over the first samples: the line's
   // speed is the speed at their mean time.
@@ -312,6 +342,12 @@ StrokeFit kinematic_guess(const ShotData& data, const FitOptions& options) {
 
 StrokeFit evaluate_stroke(const phys::CompiledScene& scene, const ShotData& data,
                           const phys::Shot& shot, double offset_s, const FitOptions& options) {
+  return score_stroke(scene, data, shot, offset_s, options, kInf);
+}
+
+StrokeFit score_stroke(const phys::CompiledScene& scene, const ShotData& data,
+                       const phys::Shot& shot, double offset_s, const FitOptions& options,
+                       double t_max) {
   StrokeFit f;
   f.shot = shot;
   f.offset_s = offset_s;
@@ -335,7 +371,7 @@ StrokeFit evaluate_stroke(const phys::CompiledScene& scene, const ShotData& data
         sum_cue += r2;
         ++n_cue;
       }
-      if (k == 0 || options.all_balls) {
+      if ((k == 0 || options.all_balls) && data.t[k][i] <= t_max) {
         loss += huber(std::sqrt(r2), options.huber_delta);
         ++n_loss;
       }
@@ -373,36 +409,55 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
                      const FitOptions& options, const StrokeFit* start) {
   const StrokeFit guess = start ? *start : kinematic_guess(data, options);
   StrokeObjective objective{&scene, &data, &options, guess.shot, {}, 0};
-  objective.best = evaluate_stroke(scene, data, guess.shot, guess.offset_s, options);
-  ++objective.evaluations;
-  std::vector<double> u = unit_of(guess, guess.shot, options);
+  int evaluations = 0;
+  // A local BOBYQA run from the best point so far, on the samples up to t_max, the box
+  // recentred on that point.
+  const auto local = [&](double t_max, int budget, double step) {
+    const StrokeFit from = objective.best;
+    objective.t_max = t_max;
+    objective.centre = from.shot;
+    objective.best = score_stroke(scene, data, from.shot, from.offset_s, options, t_max);
+    std::vector<double> x = unit_of(from, from.shot, data, options);
+    detail::StageSettings l;
+    l.algorithm = NLOPT_LN_BOBYQA;
+    l.max_evaluations = budget;
+    l.x_tolerance = 1e-7;
+    l.initial_step = step;
+    detail::run_stage(l, &x, &objective);
+  };
+  objective.best = guess;
   if (!start) {
+    // The same stroke gives the same answer on every run and thread.
+    nlopt_srand(std::hash<std::string>{}(data.id) ^ 0x5eed);
+    // Continuation in time: the first samples, before kisses and cushions multiply the
+    // minima, pin speed and aim; each longer window starts from the last answer.
+    const double t0 = data.strike_lo;
+    const double windows[] = {t0 + 0.6, t0 + 1.2, t0 + 2.5, t0 + 5.0, kInf};
+    objective.t_max = windows[0];
+    objective.best = score_stroke(scene, data, guess.shot, guess.offset_s, options, windows[0]);
     // Global: CRS2 over the box round the first guess (as `solve`'s global stage).
     detail::StageSettings g;
     g.algorithm = NLOPT_GN_CRS2_LM;
     g.max_evaluations = options.global_evaluations;
-    std::vector<double> x = u;
+    std::vector<double> x = unit_of(guess, guess.shot, data, options);
     detail::run_stage(g, &x, &objective);
-    u = unit_of(objective.best, guess.shot, options);
+    for (double w : windows) local(w, options.local_evaluations / 2, 0.02);
+    const StrokeFit continued = objective.best;
+    // A second start: the global stage on every sample at once, then a local run.
+    evaluations += objective.evaluations;
+    objective.evaluations = 0;
+    objective.t_max = kInf;
+    objective.centre = guess.shot;
+    objective.best = evaluate_stroke(scene, data, guess.shot, guess.offset_s, options);
+    x = unit_of(guess, guess.shot, data, options);
+    detail::run_stage(g, &x, &objective);
+    local(kInf, options.local_evaluations / 2, 0.02);
+    if (continued.loss < objective.best.loss) objective.best = continued;
   }
-  // Local: BOBYQA from the best point so far.
-  detail::StageSettings l;
-  l.algorithm = NLOPT_LN_BOBYQA;
-  l.max_evaluations = options.local_evaluations;
-  l.x_tolerance = 1e-7;
-  l.initial_step = start ? 0.01 : 0.03;
-  detail::run_stage(l, &u, &objective);
-  // The local stage may end at the box's wall: a second local run, recentred.
-  {
-    const StrokeFit mid = objective.best;
-    objective.centre = mid.shot;
-    std::vector<double> x = unit_of(mid, mid.shot, options);
-    l.max_evaluations = options.local_evaluations / 2;
-    l.initial_step = 0.005;
-    detail::run_stage(l, &x, &objective);
-  }
-  StrokeFit best = objective.best;
-  best.evaluations = objective.evaluations;
+  local(kInf, options.local_evaluations, start ? 0.01 : 0.005);
+  evaluations += objective.evaluations;
+  StrokeFit best = evaluate_stroke(scene, data, objective.best.shot, objective.best.offset_s, options);
+  best.evaluations = evaluations + 1;
   return best;
 }
 

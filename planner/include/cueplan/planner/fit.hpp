@@ -61,6 +61,13 @@ struct ShotData {
   std::vector<std::vector<physics::Vec2>> p;  // m, table frame
   physics::Scene scene;                       // the table with the object balls placed
   physics::Vec2 cue_start;
+  // The strike lies in [strike_lo, strike_lo + FitOptions::max_offset_s + strike_extra]
+  // (s on the file's clock): [0, max_offset_s] when the cue ball's samples start at the
+  // usual rate; when its first moving sample comes after a gap, the window ends there.
+  double strike_lo = 0.0;
+  double strike_extra = 0.0;
+  // Samples of the cue ball before any other ball moves (for the first guess).
+  double first_other_motion = 0.0;
 };
 struct ShotDataRead {
   std::optional<ShotData> data;
@@ -76,9 +83,9 @@ struct FitOptions {
   bool all_balls = false;        // objective over every ball's samples, not only the cue ball's
   double huber_delta = 0.03;     // m: residuals beyond it count linearly (tracking glitches)
   double max_offset_s = 0.02;    // the strike lies in [0, max_offset_s] after the file's t = 0
-  int global_evaluations = 250;  // NLopt global stage (CRS2) over the box round the first guess
-  int local_evaluations = 350;   // NLopt local stage (BOBYQA) from the best point so far
-  double aim_span_deg = 6.0;     // the box: first-guess aim +- this
+  int global_evaluations = 1200;  // NLopt global stage (CRS2) over the box round the first guess
+  int local_evaluations = 600;    // NLopt local stage (BOBYQA) from the best point so far
+  double aim_span_deg = 8.0;      // the box: first-guess aim +- this
   double speed_span = 0.35;      // and first-guess speed x [1 - span, 1 + span]
   double spin_max = 1.25;        // |k_T|, |k_S| <= this
   int max_events = 400;
@@ -89,7 +96,7 @@ struct FitOptions {
 // A stroke and the strike time, and how well they match the recorded shot.
 struct StrokeFit {
   physics::Shot shot;
-  double offset_s = 0.0;  // strike time after the file's t = 0
+  double offset_s = 0.0;  // strike time after the file's t = 0 (in ShotData's window)
   double loss = 0.0;      // mean Huber loss over the objective's samples (m^2)
   double rmse_cue_m = 0.0;
   double rmse_all_m = 0.0;
