@@ -62,6 +62,10 @@ CalibrateCommand::CalibrateCommand(CLI::App& parent) {
   c.add_option("--evaluations", args_.evaluations,
                "Loss evaluations of the constants' local search per round")
       ->capture_default_str();
+  c.add_option("--refit-evaluations", args_.refit_evaluations,
+               "Local evaluations of each stroke's refit inside every evaluation of the "
+               "constants")
+      ->capture_default_str();
   c.add_option("--out", args_.out_file,
                "Write the constants as a physics: block (for problem files and `fit --physics`)")
       ->type_name("physics.yaml");
@@ -77,6 +81,8 @@ int CalibrateCommand::validate(std::ostream& err) const {
   if (args_.folds < 1) return usage_error(err, kCommandName, "--folds must be >= 1");
   if (args_.rounds < 1) return usage_error(err, kCommandName, "--rounds must be >= 1");
   if (args_.evaluations < 1) return usage_error(err, kCommandName, "--evaluations must be >= 1");
+  if (args_.refit_evaluations < 0)
+    return usage_error(err, kCommandName, "--refit-evaluations must be >= 0");
   if (args_.threads < 0) return usage_error(err, kCommandName, "--threads must be >= 0");
   if (!args_.out_file.empty())
     if (std::string why = check_output_file(args_.out_file); !why.empty())
@@ -99,6 +105,7 @@ int CalibrateCommand::run(std::ostream& out, std::ostream& err) const {
   o.folds = args_.folds;
   o.rounds = args_.rounds;
   o.constant_evaluations = args_.evaluations;
+  o.refit_evaluations = args_.refit_evaluations;
   o.threads = args_.threads;
   const plan::CalibrationResult r = plan::calibrate(
       shots, table, o, [&err](const std::string& line) { err << kCommandName << ": " << line << '\n'; });

@@ -15,8 +15,9 @@ namespace cueplan::cli {
 struct CalibrateArgs {
   std::string tracks_file;
   int folds = 5;
-  int rounds = 3;
+  int rounds = 2;
   int evaluations = 120;
+  int refit_evaluations = 40;
   std::string out_file;
   std::string physics_file;
   int threads = 0;

@@ -502,6 +502,7 @@ struct ConstantsObjective {
   const FitOptions* fit;
   unsigned threads;
   std::vector<double> lo, hi;
+  int refit_evaluations = 0;  // > 0: each stroke refitted (local) at every evaluation
   double best = kInf;
   std::vector<double> best_c;
   std::vector<double> constants(const double* u) const {
@@ -521,7 +522,13 @@ struct ConstantsObjective {
         return;
       }
       const StrokeFit& st = (*strokes)[(*shots)[i]];
-      losses[i] = evaluate_stroke(cs, d, st.shot, st.offset_s, *fit).loss;
+      if (refit_evaluations > 0) {  // the stroke refitted inside (a profile of the loss)
+        FitOptions quick = *fit;
+        quick.local_evaluations = refit_evaluations;
+        losses[i] = fit_stroke(cs, d, quick, &st).loss;
+      } else {
+        losses[i] = evaluate_stroke(cs, d, st.shot, st.offset_s, *fit).loss;
+      }
     });
     double sum = 0;
     for (double l : losses) sum += l;
@@ -564,8 +571,16 @@ std::vector<double> fit_constants(const std::vector<ShotData>& all, const std::v
                                   const std::function<void(const std::string&)>& progress,
                                   const std::string& label) {
   for (int round = 1; round <= o.rounds; ++round) {
-    ConstantsObjective obj{&all,     &shots, strokes, &o.fit, threads, constant_lower_bounds(),
-                           constant_upper_bounds(), kInf, {}};
+    ConstantsObjective obj{&all,
+                           &shots,
+                           strokes,
+                           &o.fit,
+                           threads,
+                           constant_lower_bounds(),
+                           constant_upper_bounds(),
+                           o.refit_evaluations,
+                           kInf,
+                           {}};
     std::vector<double> u(kConstantCount);
     for (int i = 0; i < kConstantCount; ++i) u[i] = (c[i] - obj.lo[i]) / (obj.hi[i] - obj.lo[i]);
     obj.best = obj.loss_at(c);
@@ -576,14 +591,21 @@ std::vector<double> fit_constants(const std::vector<ShotData>& all, const std::v
     l.max_evaluations = o.constant_evaluations;
     l.initial_step = 0.05;
     l.x_tolerance = 1e-5;
-    detail::run_stage(l, &u, &obj);
+    int calls = 0;
+    auto counted = [&obj, &calls](const double* x) {
+      ++calls;
+      return obj(x);
+    };
+    const nlopt_result code = detail::run_stage(l, &u, &counted);
     c = obj.best_c;
     fit_strokes(all, shots, c, o.fit, threads, /*refit=*/true, strokes);
     double after = 0;
     for (size_t i : shots) after += (*strokes)[i].loss;
     if (progress)
-      progress(fmt::format("{}: round {}: loss {:.5g} -> {:.5g} (constants), {:.5g} (strokes)",
-                           label, round, before, obj.best, after));
+      progress(fmt::format(
+          "{}: round {}: loss {:.5g} -> {:.5g} (constants, {} evaluations, NLopt {}), {:.5g} "
+          "(strokes)",
+          label, round, before, obj.best, calls, static_cast<int>(code), after));
   }
   return c;
 }
@@ -628,8 +650,16 @@ CalibrationResult calibrate(const std::vector<ShotData>& shots, const phys::Scen
   for (size_t i = 0; i < n; ++i) res.rmse_all_shots_m.push_back(strokes[i].rmse_cue_m);
   // Uncertainties: the spread across folds, and the change of one constant (strokes and
   // the others fixed) that raises the all-shot loss by 1 %.
-  ConstantsObjective obj{&shots, &every, &strokes, &o.fit, threads, constant_lower_bounds(),
-                         constant_upper_bounds(), kInf, {}};
+  ConstantsObjective obj{&shots,
+                         &every,
+                         &strokes,
+                         &o.fit,
+                         threads,
+                         constant_lower_bounds(),
+                         constant_upper_bounds(),
+                         o.refit_evaluations,
+                         kInf,
+                         {}};
   const double l0 = obj.loss_at(res.constants);
   for (int i = 0; i < kConstantCount; ++i) {
     ConstantReport r;

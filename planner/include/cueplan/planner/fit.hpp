@@ -141,8 +141,12 @@ std::vector<double> constant_upper_bounds();
 
 struct CalibrationOptions {
   int folds = 5;
-  int rounds = 3;                  // alternations of constants and strokes
+  int rounds = 2;                  // alternations of constants and strokes
   int constant_evaluations = 120;  // NLopt local stage per round
+  // Each evaluation of the constants refits every stroke with this many local
+  // evaluations (strokes and constants are strongly coupled - speed and cloth friction,
+  // above all - so constants with strokes held fixed barely move).
+  int refit_evaluations = 40;
   int threads = 0;                 // 0: one per core
   FitOptions fit;
 };
@@ -151,7 +155,8 @@ struct ConstantReport {
   std::string name;
   double value = 0.0;      // fitted on every shot
   double fold_spread = 0;  // standard deviation across the folds' values
-  double half_width = 0;   // change that raises the all-shot loss by 1 % (others fixed)
+  double half_width = 0;   // change that raises the all-shot loss by 1 % (the other
+                           // constants fixed, the strokes refitted)
   bool constrained = false;
 };
 
