@@ -114,6 +114,7 @@ const FitRun& fitted() {
     file << R"({"id": 14, "balls": {"1": {"t": [0, 0.04, 0.02], "x": [0, 0.1, 0.2], "y": [0, 0, 0]}, "2": {"t": [0, 1], "x": [0.5, 0.5], "y": [0, 0]}}})" << '\n';
     file << tracked_shot(3, starts[2], r.truths[2], rng).dump() << '\n';
     write_text(scratch() / "tracks.jsonl", file.str());
+    // CUEPLAN_FIT_TEST_KEEP=PATH keeps a copy of the tracks, to rerun `cueplan fit` by hand.
     if (const char* keep = std::getenv("CUEPLAN_FIT_TEST_KEEP")) write_text(keep, file.str());
     r.result = cueplan("fit " + (scratch() / "tracks.jsonl").string() + " --json --png " +
                        (scratch() / "pictures").string());
