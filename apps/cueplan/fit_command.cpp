@@ -271,6 +271,9 @@ int FitCommand::run(std::ostream& out, std::ostream& err) const {
                     ? ordered_json(d.id)
                     : ordered_json::parse(d.id);
       j["shot"] = shot_json(o.after);
+      // The first guess's error and the fit's time, beside the stroke.
+      j["shot"]["first_guess_rmse_cue_m"] = o.before.rmse_cue_m;
+      j["shot"]["fit_seconds"] = o.seconds;
       j["physics"] = physics_json(d.scene);
       j["rmse_cue_m"] = o.after.rmse_cue_m;
       j["rmse_all_m"] = o.after.rmse_all_m;
@@ -290,8 +293,6 @@ int FitCommand::run(std::ostream& out, std::ostream& err) const {
       }
       j["tracks"] = tracks;
       j["problem"] = problem_json(d, d.scene, r);
-      j["rmse_first_guess_cue_m"] = o.before.rmse_cue_m;
-      j["fit_seconds"] = o.seconds;
       out << j.dump() << '\n';
     } else {
       out << fmt::format("{:>6}  {:>11.2f}  {:>10.2f}  {}\n", d.id, 100.0 * o.before.rmse_cue_m,
