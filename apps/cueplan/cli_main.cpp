@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "calibrate_command.hpp"
 #include "collide_command.hpp"
 #include "exit_codes.hpp"
 #include "figures_command.hpp"
+#include "fit_command.hpp"
 #include "merge_command.hpp"
 #include "rebound_command.hpp"
 #include "route_command.hpp"
@@ -90,9 +92,12 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   RouteCommand route(app);
   ServeCommand serve(app);
   MergeCommand merge(app);
-  const std::vector<CommandEntry> commands = {entry(rebound), entry(collide), entry(simulate),
-                                              entry(figures), entry(solve),   entry(spinmap),
-                                              entry(route),   entry(serve),   entry(merge)};
+  FitCommand fit(app);
+  CalibrateCommand calibrate(app);
+  const std::vector<CommandEntry> commands = {
+      entry(rebound), entry(collide), entry(simulate), entry(figures), entry(solve),
+      entry(spinmap), entry(route),   entry(serve),    entry(merge),   entry(fit),
+      entry(calibrate)};
 
   try {
     app.parse(argc, argv);

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "cueplan/problems/presets.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
 #include "yaml_fields.hpp"
@@ -99,11 +100,16 @@ physics::PocketShape read_pocket_shape(const Field& field, FieldLines& lines,
 // {corner: {mouth, wall_angle_deg, shelf, hole_radius, point_radius}, middle: {...}}),
 // pocket_radius (m, the standard pockets' capture radius). Without `pockets` the table
 // has the snooker preset's jawed pockets, or the standard capture circles when
-// pocket_radius is given (files that set a radius keep their circles).
-PocketsSpec read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+// pocket_radius is given (files that set a radius keep their circles). Under a preset
+// (`table: carom`, or `preset: carom` in the mapping; read_table_preset) the table has no
+// pockets unless `pockets` says otherwise.
+PocketsSpec read_table(const Mapping& root, FieldLines& lines, physics::Scene& scene,
+                       bool preset) {
   PocketsSpec spec;
+  if (preset) spec.kind = PocketsSpec::Kind::none;
   if (const std::optional<Field> table = root.find("table")) {
-    const Mapping m(*table, {"length", "width", "pockets", "pocket_radius"}, lines);
+    if (table->value.IsScalar()) return spec;  // a preset's name: read_table_preset set it all
+    const Mapping m(*table, {"preset", "length", "width", "pockets", "pocket_radius"}, lines);
     if (auto f = m.find("length")) scene.length = detail::positive_number(*f);
     if (auto f = m.find("width")) scene.width = detail::positive_number(*f);
     if (auto f = m.find("pocket_radius")) {
@@ -166,6 +172,29 @@ void build_pockets(const PocketsSpec& spec, const FieldLines& lines, physics::Sc
   }
   scene.pockets =
       physics::jawed_pockets(scene.length, scene.width, spec.shapes.corner, spec.shapes.middle);
+}
+
+// table: carom, or table: {preset: carom, ...}: the match table and its constants
+// (carom_scene()), before the file's own table, ball and physics fields override them.
+// Returns whether a preset was applied.
+bool read_table_preset(const Mapping& root, FieldLines& lines, physics::Scene& scene) {
+  const std::optional<Field> table = root.find("table");
+  if (!table) return false;
+  std::optional<Field> name;
+  if (table->value.IsScalar()) {
+    name = *table;
+  } else if (table->value.IsMap() && table->value["preset"]) {
+    lines[table->path + ".preset"] = table->line;
+    name = Field{table->value["preset"], table->path + ".preset", table->line};
+  }
+  if (!name) return false;
+  if (!name->value.IsScalar())
+    detail::fail(*name, "must be a preset's name (carom), got " + detail::describe_value(name->value));
+  detail::one_of(*name, {"carom"});
+  const std::vector<physics::ObjectBall> balls = scene.balls;
+  scene = carom_scene();
+  scene.balls = balls;
+  return true;
 }
 
 // ball: radius (m), mass (kg). Keeps the rest of the cushion parameters at their defaults.
@@ -414,8 +443,11 @@ Problem read_problem(const Field& document, const std::string& source) {
   problem.name = read_name(root, source);
 
   physics::Scene& scene = problem.scene;
-  const PocketsSpec pockets = read_table(root, lines, scene);
+  const bool preset = read_table_preset(root, lines, scene);
+  const PocketsSpec pockets = read_table(root, lines, scene, preset);
   read_ball(root, lines, scene);
+  // A preset's cushion keeps its own nose height unless physics.cushion_height says otherwise.
+  if (preset) scene.ball_and_cushion.cushion_height = kCaromCushionHeight;
   build_pockets(pockets, lines, scene);
   read_physics(root, lines, scene);
   read_cue(root, lines, scene);
@@ -507,6 +539,57 @@ int second_document_line(const std::string& text) {
 }
 
 }  // namespace
+
+physics::Scene carom_scene() {
+  physics::Scene scene;
+  scene.length = 2.84;  // UMB match table: playing surface 2.84 x 1.42 m
+  scene.width = 1.42;
+  scene.pockets.clear();
+  physics::CushionParams& c = scene.ball_and_cushion;
+  c.radius = 0.03075;  // 61.5 mm ball (UMB: 61 to 61.5 mm)
+  c.mass = 0.21;       // UMB: 205 to 220 g
+  c.cushion_height = kCaromCushionHeight;
+  c.mu_cushion = 0.14;   // Mathavan et al. 2010, ball on cushion rubber
+  c.restitution = 0.85;  // Alciatore: ball-rail restitution 0.6 to 0.9
+  physics::ClothParams& cloth = scene.cloth;
+  cloth.mu_slide = c.mu_table = 0.2;  // Alciatore: ball-cloth sliding friction 0.15 to 0.4, typ. 0.2
+  cloth.mu_roll = 0.005;  // Alciatore: 0.005 to 0.015; the low end for heated carom cloth
+  // Alciatore: sidespin decays at 5 to 15 rad/s^2; 10 rad/s^2 = 5 mu_sp g / (2 R).
+  cloth.mu_spin = 2.0 * c.radius * 10.0 / (5.0 * cloth.gravity);
+  scene.ball_contact.mu_ball = 0.05;      // Alciatore 0.03 to 0.08; Mathavan et al. 2014
+  scene.ball_contact.restitution = 0.94;  // Alciatore: ball-ball restitution 0.92 to 0.98
+  return scene;
+}
+
+std::string apply_physics_block(const std::string& yaml_text, const std::string& source_name,
+                                physics::Scene* scene) {
+  try {
+    const YAML::Node root = YAML::Load(yaml_text);
+    const int line = detail::line_of(root) > 0 ? detail::line_of(root) : 1;
+    if (!root.IsMap())
+      return source_name + ":" + std::to_string(line) +
+             ": (document): must be a mapping with a physics: block, got " +
+             detail::describe_value(root);
+    FieldLines lines;
+    const Mapping m({root, "", line}, {"name", "physics"}, lines);
+    if (!m.find("physics"))
+      return source_name + ":" + std::to_string(line) + ": physics: is missing";
+    read_physics(m, lines, *scene);
+    if (const physics::Validation error = scene->validate()) {
+      const std::string field = file_field(error->field.under({"scene"}));
+      return source_name + ":" + std::to_string(line_in_file(field, lines, line)) + ": " + field +
+             ": " + error->rule_text("");
+    }
+    return {};
+  } catch (const FieldError& e) {
+    return source_name + ":" + std::to_string(e.line) + ": " + e.field + ": " + e.message;
+  } catch (const YAML::Exception& e) {
+    return source_name + ":" + std::to_string(e.mark.is_null() ? 0 : e.mark.line + 1) +
+           ": yaml: " + detail::printable(e.msg);
+  } catch (const std::exception& e) {
+    return source_name + ": cannot be read: " + detail::printable(e.what());
+  }
+}
 
 LoadResult parse_problem(const std::string& yaml_text, const std::string& source_name) {
   try {

@@ -1,0 +1,689 @@
+// Strokes and table constants from recorded shots (fit.hpp).
+#include "cueplan/planner/fit.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <functional>
+#include <numbers>
+
+#include "cueplan/physics/parallel.hpp"
+#include "nlopt_stage.hpp"
+
+namespace cueplan::planner {
+namespace {
+
+namespace phys = cueplan::physics;
+using nlohmann::json;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNudge = 0.01;  // m: what prepare_shot moves a ball by, at most
+constexpr double kFailedLoss = 1.0;  // m^2 of Huber loss for a stroke that cannot be simulated
+
+std::string shot_ball(const std::string& id, const std::string& ball) {
+  return "shot " + id + ", ball " + ball;
+}
+
+// One array of numbers under `key` of ball `b`; empty optional with *error set otherwise.
+std::optional<std::vector<double>> numbers(const json& b, const char* key, const std::string& where,
+                                           std::string* error) {
+  if (!b.contains(key)) {
+    *error = where + ": " + key + " is missing";
+    return std::nullopt;
+  }
+  const json& a = b.at(key);
+  if (!a.is_array()) {
+    *error = where + ": " + key + " must be an array of numbers";
+    return std::nullopt;
+  }
+  std::vector<double> v;
+  v.reserve(a.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (!a[i].is_number()) {
+      *error = fmt::format("{}: {}[{}] is {}, not a number", where, key, i, a[i].dump());
+      return std::nullopt;
+    }
+    const double value = a[i].get<double>();
+    if (!std::isfinite(value)) {
+      *error = fmt::format("{}: {}[{}] is not finite", where, key, i);
+      return std::nullopt;
+    }
+    v.push_back(value);
+  }
+  return v;
+}
+
+double huber(double r, double delta) {
+  return r <= delta ? 0.5 * r * r : delta * (r - 0.5 * delta);
+}
+
+// Position of a simulated ball at time ts (s after the strike); `seg` walks along the path
+// for increasing times.
+phys::Vec2 position_at(const phys::BallOutcome& ball, double ts, size_t* seg) {
+  if (ts <= 0.0 || ball.path.empty()) return ts <= 0.0 ? ball.start : ball.final_position;
+  while (*seg + 1 < ball.path.size() && ts > ball.path[*seg].t1) ++*seg;
+  const phys::PathSegment& s = ball.path[*seg];
+  if (ts < s.t0) return s.at(s.t0);
+  if (ts > s.t1) return ball.final_position;
+  return s.at(ts);
+}
+
+double window(const ShotData& d, const FitOptions& o) { return o.max_offset_s + d.strike_extra; }
+
+phys::Shot stroke_of(const double* u, const phys::Shot& centre, const ShotData& d,
+                     const FitOptions& o, double* offset) {
+  phys::Shot s;
+  s.speed = centre.speed * (1.0 + o.speed_span * (2.0 * u[0] - 1.0));
+  s.aim_deg = centre.aim_deg + o.aim_span_deg * (2.0 * u[1] - 1.0);
+  s.topspin_k = o.spin_max * (2.0 * u[2] - 1.0);
+  s.sidespin_k = o.spin_max * (2.0 * u[3] - 1.0);
+  *offset = d.strike_lo + window(d, o) * u[4];
+  // A stroke elevation (Shot::elevation_deg, when strokes have it) would be u[5].
+  return s;
+}
+
+std::vector<double> unit_of(const StrokeFit& f, const phys::Shot& centre, const ShotData& d,
+                            const FitOptions& o) {
+  auto clamp01 = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.5; };
+  return {clamp01(0.5 * (f.shot.speed / centre.speed - 1.0) / o.speed_span + 0.5),
+          clamp01(0.5 * (f.shot.aim_deg - centre.aim_deg) / o.aim_span_deg + 0.5),
+          clamp01(0.5 * f.shot.topspin_k / o.spin_max + 0.5),
+          clamp01(0.5 * f.shot.sidespin_k / o.spin_max + 0.5),
+          clamp01(window(d, o) > 0 ? (f.offset_s - d.strike_lo) / window(d, o) : 0.0)};
+}
+
+}  // namespace
+
+// The loss over the samples up to t_max (s on the file's clock); the RMSEs over all.
+StrokeFit score_stroke(const phys::CompiledScene& scene, const ShotData& data,
+                       const phys::Shot& shot, double offset_s, const FitOptions& options,
+                       double t_max);
+
+namespace {
+
+struct StrokeObjective {
+  const phys::CompiledScene* scene;
+  const ShotData* data;
+  const FitOptions* options;
+  phys::Shot centre;
+  StrokeFit best;
+  int evaluations = 0;
+  double t_max = std::numeric_limits<double>::infinity();
+  double operator()(const double* u) {
+    double offset = 0.0;
+    const phys::Shot shot = stroke_of(u, centre, *data, *options, &offset);
+    const StrokeFit f = score_stroke(*scene, *data, shot, offset, *options, t_max);
+    ++evaluations;
+    if (f.loss < best.loss) best = f;
+    return f.loss;
+  }
+};
+
+double sq(double v) { return v * v; }
+
+}  // namespace
+
+TrackRead parse_track(const std::string& line, int line_number) {
+  TrackRead r;
+  r.id = "line " + std::to_string(line_number);
+  json j;
+  try {
+    j = json::parse(line);
+  } catch (const json::exception& e) {
+    r.error = r.id + ": not JSON: " + e.what();
+    return r;
+  }
+  if (!j.is_object()) {
+    r.error = r.id + ": must be a JSON object {\"id\": ..., \"balls\": {...}}";
+    return r;
+  }
+  if (j.contains("id")) r.id = j["id"].is_string() ? j["id"].get<std::string>() : j["id"].dump();
+  const std::string shot = "shot " + r.id;
+  if (!j.contains("balls") || !j["balls"].is_object() || j["balls"].empty()) {
+    r.error = shot + ": balls must be an object of balls {\"1\": {t, x, y}, ...}";
+    return r;
+  }
+  Track track;
+  track.id = r.id;
+  for (const auto& [name, b] : j["balls"].items()) {
+    const std::string where = shot_ball(r.id, name);
+    if (!b.is_object()) {
+      r.error = where + ": must be an object {t, x, y}";
+      return r;
+    }
+    TrackedBall ball;
+    ball.name = name;
+    auto t = numbers(b, "t", where, &r.error);
+    if (!t) return r;
+    auto x = numbers(b, "x", where, &r.error);
+    if (!x) return r;
+    auto y = numbers(b, "y", where, &r.error);
+    if (!y) return r;
+    if (t->empty()) {
+      r.error = where + ": no samples";
+      return r;
+    }
+    if (x->size() != t->size() || y->size() != t->size()) {
+      r.error = fmt::format("{}: t, x and y differ in length ({}, {}, {})", where, t->size(),
+                            x->size(), y->size());
+      return r;
+    }
+    for (size_t i = 1; i < t->size(); ++i)
+      if ((*t)[i] < (*t)[i - 1]) {
+        r.error = fmt::format("{}: times out of order: t[{}] = {} comes after t[{}] = {}", where, i,
+                              (*t)[i], i - 1, (*t)[i - 1]);
+        return r;
+      }
+    ball.t = std::move(*t);
+    ball.x = std::move(*x);
+    ball.y = std::move(*y);
+    track.balls.push_back(std::move(ball));
+  }
+  r.track = std::move(track);
+  return r;
+}
+
+ShotDataRead prepare_shot(const Track& track, const phys::Scene& table, const TrackFrame& frame) {
+  ShotDataRead out;
+  const std::string shot = "shot " + track.id;
+  if (track.balls.empty()) {
+    out.error = shot + ": no balls";
+    return out;
+  }
+  // The cue ball: the one that moves first (smallest second sample time).
+  size_t cue = 0;
+  double first = kInf;
+  for (size_t k = 0; k < track.balls.size(); ++k) {
+    const TrackedBall& b = track.balls[k];
+    if (b.t.size() > 1 && b.t[1] < first) {
+      first = b.t[1];
+      cue = k;
+    }
+  }
+  const TrackedBall& cb = track.balls[cue];
+  if (cb.t.size() < 3) {
+    out.error = shot_ball(track.id, cb.name) +
+                ": the cue ball (the first to move) needs at least 3 samples, got " +
+                std::to_string(cb.t.size());
+    return out;
+  }
+  ShotData d;
+  d.id = track.id;
+  d.scene = table;
+  d.scene.balls.clear();
+  std::vector<size_t> order{cue};
+  for (size_t k = 0; k < track.balls.size(); ++k)
+    if (k != cue) order.push_back(k);
+  const double off = table.contact_offset();
+  for (size_t k : order) {
+    const TrackedBall& b = track.balls[k];
+    d.names.push_back(b.name);
+    d.t.push_back(b.t);
+    std::vector<phys::Vec2> p;
+    for (size_t i = 0; i < b.t.size(); ++i) p.push_back(frame.to_table(b.x[i], b.y[i]));
+    // The start must lie on the table (within a centimetre: tracking noise is nudged in).
+    phys::Vec2& s = p.front();
+    const double lo_x = off, hi_x = table.length - off, lo_y = off, hi_y = table.width - off;
+    if (s.x < lo_x - kNudge || s.x > hi_x + kNudge || s.y < lo_y - kNudge || s.y > hi_y + kNudge) {
+      out.error = fmt::format(
+          "{}: starts off the table at ({:.4g}, {:.4g}) in the file's units, ({:.4g}, {:.4g}) m "
+          "from the corner; the centre must lie within [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m",
+          shot_ball(track.id, b.name), b.x[0], b.y[0], s.x, s.y, lo_x, hi_x, lo_y, hi_y);
+      return out;
+    }
+    s.x = std::clamp(s.x, lo_x + 1e-6, hi_x - 1e-6);
+    s.y = std::clamp(s.y, lo_y + 1e-6, hi_y - 1e-6);
+    d.p.push_back(std::move(p));
+  }
+  // Overlapping balls: beyond tracking noise an error, within it pushed apart to touch.
+  const double two_r = 2.0 * table.radius();
+  for (size_t i = 0; i < d.p.size(); ++i)
+    for (size_t j = i + 1; j < d.p.size(); ++j) {
+      phys::Vec2& a = d.p[i].front();
+      phys::Vec2& b = d.p[j].front();
+      const double dx = b.x - a.x, dy = b.y - a.y, dist = std::hypot(dx, dy);
+      if (dist < two_r - kNudge || dist == 0.0) {
+        out.error = fmt::format(
+            "{}: overlaps ball {} at the start: centres {:.4g} m apart, less than two radii "
+            "({:.4g} m)",
+            shot_ball(track.id, d.names[j]), d.names[i], dist, two_r);
+        return out;
+      }
+      if (dist < two_r + 1e-6) {
+        const double push = 0.5 * (two_r + 2e-6 - dist) / dist;
+        a.x -= dx * push;
+        a.y -= dy * push;
+        b.x += dx * push;
+        b.y += dy * push;
+      }
+    }
+  d.cue_start = d.p[0].front();
+  // A cue ball first seen moving after a gap in its samples was struck in the gap.
+  const double t1 = d.t[0][1];
+  if (t1 > 0.05) {
+    d.strike_lo = t1 - 0.05;
+    d.strike_extra = 0.05 - 0.02;  // window [t1 - 0.05, t1 - 0.05 + max_offset_s + 0.03]
+  }
+  d.first_other_motion = kInf;
+  for (size_t k = 1; k < d.t.size(); ++k)
+    for (size_t i = 1; i < d.t[k].size(); ++i)
+      if (std::hypot(d.p[k][i].x - d.p[k][0].x, d.p[k][i].y - d.p[k][0].y) > 0.01) {
+        d.first_other_motion = std::min(d.first_other_motion, d.t[k][i]);
+        break;
+      }
+  for (size_t k = 1; k < d.p.size(); ++k)
+    d.scene.balls.push_back({"ball" + d.names[k], d.p[k].front()});
+  if (const phys::Validation error = d.scene.validate()) {
+    out.error = shot + ": the table with the balls placed is unusable: " + error->rule_text();
+    return out;
+  }
+  for (size_t k = 0; k < d.p.size(); ++k)
+    if (const phys::Validation error = d.scene.check_position(
+            d.p[k].front(), {k == 0 ? std::string("cue_ball") : "ball" + d.names[k]})) {
+      // An object ball is checked against the others by validate(); the cue ball here.
+      if (k == 0) {
+        out.error = shot_ball(track.id, d.names[0]) + ": " + error->rule_text();
+        return out;
+      }
+    }
+  out.data = std::move(d);
+  return out;
+}
+
+StrokeFit kinematic_guess(const ShotData& data, const FitOptions& options) {
+  const std::vector<double>& t = data.t[0];
+  const std::vector<phys::Vec2>& p = data.p[0];
+  // The first moving samples (up to 5 after the start, and before any other ball moves,
+  // at least 2): a least-squares line p = a + v t.
+  size_t n = std::min<size_t>(5, t.size() - 1);
+  while (n > 2 && t[n] >= data.first_other_motion - 0.01) --n;
+  double st = 0, sx = 0, sy = 0, stt = 0, stx = 0, sty = 0;
+  for (size_t i = 1; i <= n; ++i) {
+    st += t[i];
+    sx += p[i].x;
+    sy += p[i].y;
+    stt += t[i] * t[i];
+    stx += t[i] * p[i].x;
+    sty += t[i] * p[i].y;
+  }
+  const double m = static_cast<double>(n);
+  const double den = m * stt - st * st;
+  StrokeFit f;
+  phys::Vec2 v, a;
+  if (n >= 2 && den > 0) {
+    v = {(m * stx - st * sx) / den, (m * sty - st * sy) / den};
+    a = {(sx - v.x * st) / m, (sy - v.y * st) / m};
+  } else {  // one sample: from the start
+    const double dt = std::max(t[1] - t[0], 1e-3);
+    v = {(p[1].x - p[0].x) / dt, (p[1].y - p[0].y) / dt};
+    a = p[0];
+  }
+  const double speed = std::hypot(v.x, v.y);
+  // The strike: where the line passes the start.
+  const double lo = data.strike_lo, hi = data.strike_lo + options.max_offset_s + data.strike_extra;
+  double t0 = 0.5 * (lo + hi);
+  if (speed > 0) {
+    const phys::Vec2 s = data.p[0].front();
+    t0 = ((s.x - a.x) * v.x + (s.y - a.y) * v.y) / (speed * speed);
+    t0 = std::clamp(t0, lo, hi);
+  }
+  // A centre-ball stroke slides, slowing at mu_s g, over the first samples: the line's
+  // speed is the speed at their mean time.
+  const double t_mean = n > 0 ? st / m : 0.0;
+  const double decel = data.scene.cloth.mu_slide * data.scene.cloth.gravity;
+  f.shot.speed = std::max(0.05, speed + decel * std::max(0.0, t_mean - t0));
+  f.shot.aim_deg = std::atan2(v.y, v.x) * 180.0 / std::numbers::pi;
+  f.offset_s = t0;
+  return f;
+}
+
+StrokeFit evaluate_stroke(const phys::CompiledScene& scene, const ShotData& data,
+                          const phys::Shot& shot, double offset_s, const FitOptions& options) {
+  return score_stroke(scene, data, shot, offset_s, options, kInf);
+}
+
+StrokeFit score_stroke(const phys::CompiledScene& scene, const ShotData& data,
+                       const phys::Shot& shot, double offset_s, const FitOptions& options,
+                       double t_max) {
+  StrokeFit f;
+  f.shot = shot;
+  f.offset_s = offset_s;
+  f.evaluations = 1;
+  phys::ShotResult r;
+  const auto positions = simulated_positions(scene, data, f, &r, options.max_events);
+  if (positions.empty()) {
+    f.loss = kFailedLoss;
+    f.rmse_cue_m = f.rmse_all_m = kInf;
+    return f;
+  }
+  f.simulated = true;
+  double sum_cue = 0, sum_all = 0, loss = 0;
+  size_t n_cue = 0, n_all = 0, n_loss = 0;
+  for (size_t k = 0; k < positions.size(); ++k)
+    for (size_t i = 0; i < positions[k].size(); ++i) {
+      const double r2 = sq(positions[k][i].x - data.p[k][i].x) + sq(positions[k][i].y - data.p[k][i].y);
+      sum_all += r2;
+      ++n_all;
+      if (k == 0) {
+        sum_cue += r2;
+        ++n_cue;
+      }
+      if ((k == 0 || options.all_balls) && data.t[k][i] <= t_max) {
+        loss += huber(std::sqrt(r2), options.huber_delta);
+        ++n_loss;
+      }
+    }
+  f.rmse_cue_m = std::sqrt(sum_cue / static_cast<double>(std::max<size_t>(n_cue, 1)));
+  f.rmse_all_m = std::sqrt(sum_all / static_cast<double>(std::max<size_t>(n_all, 1)));
+  f.loss = loss / static_cast<double>(std::max<size_t>(n_loss, 1));
+  return f;
+}
+
+std::vector<std::vector<phys::Vec2>> simulated_positions(const phys::CompiledScene& scene,
+                                                         const ShotData& data,
+                                                         const StrokeFit& fit,
+                                                         phys::ShotResult* result, int max_events) {
+  phys::SimulationOptions so;
+  so.max_events = max_events;
+  so.record_path = true;
+  phys::ShotResult r = phys::simulate(scene, data.cue_start, fit.shot, so);
+  std::vector<std::vector<phys::Vec2>> out;
+  if (r.status != phys::ShotStatus::rest || r.balls.size() != data.p.size()) {
+    if (result) *result = std::move(r);
+    return out;
+  }
+  out.resize(data.p.size());
+  for (size_t k = 0; k < data.p.size(); ++k) {
+    size_t seg = 0;
+    out[k].reserve(data.t[k].size());
+    for (double t : data.t[k]) out[k].push_back(position_at(r.balls[k], t - fit.offset_s, &seg));
+  }
+  if (result) *result = std::move(r);
+  return out;
+}
+
+StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
+                     const FitOptions& options, const StrokeFit* start) {
+  const StrokeFit guess = start ? *start : kinematic_guess(data, options);
+  StrokeObjective objective{&scene, &data, &options, guess.shot, {}, 0};
+  int evaluations = 0;
+  // A local BOBYQA run from the best point so far, on the samples up to t_max, the box
+  // recentred on that point.
+  const auto local = [&](double t_max, int budget, double step) {
+    const StrokeFit from = objective.best;
+    objective.t_max = t_max;
+    objective.centre = from.shot;
+    objective.best = score_stroke(scene, data, from.shot, from.offset_s, options, t_max);
+    std::vector<double> x = unit_of(from, from.shot, data, options);
+    detail::StageSettings l;
+    l.algorithm = NLOPT_LN_BOBYQA;
+    l.max_evaluations = budget;
+    l.x_tolerance = 1e-7;
+    l.initial_step = step;
+    detail::run_stage(l, &x, &objective);
+  };
+  objective.best = guess;
+  if (!start) {
+    // The same stroke gives the same answer on every run and thread.
+    nlopt_srand(std::hash<std::string>{}(data.id) ^ 0x5eed);
+    // Continuation in time: the first samples, before kisses and cushions multiply the
+    // minima, pin speed and aim; each longer window starts from the last answer.
+    const double t0 = data.strike_lo;
+    const double windows[] = {t0 + 0.6, t0 + 1.2, t0 + 2.5, t0 + 5.0, kInf};
+    objective.t_max = windows[0];
+    objective.best = score_stroke(scene, data, guess.shot, guess.offset_s, options, windows[0]);
+    // Global: CRS2 over the box round the first guess (as `solve`'s global stage).
+    detail::StageSettings g;
+    g.algorithm = NLOPT_GN_CRS2_LM;
+    g.max_evaluations = options.global_evaluations;
+    std::vector<double> x = unit_of(guess, guess.shot, data, options);
+    detail::run_stage(g, &x, &objective);
+    for (double w : windows) local(w, options.local_evaluations / 2, 0.02);
+    const StrokeFit continued = objective.best;
+    // A second start: the global stage on every sample at once, then a local run.
+    evaluations += objective.evaluations;
+    objective.evaluations = 0;
+    objective.t_max = kInf;
+    objective.centre = guess.shot;
+    objective.best = evaluate_stroke(scene, data, guess.shot, guess.offset_s, options);
+    x = unit_of(guess, guess.shot, data, options);
+    detail::run_stage(g, &x, &objective);
+    local(kInf, options.local_evaluations / 2, 0.02);
+    if (continued.loss < objective.best.loss) objective.best = continued;
+  }
+  local(kInf, options.local_evaluations, start ? 0.01 : 0.005);
+  evaluations += objective.evaluations;
+  StrokeFit best = evaluate_stroke(scene, data, objective.best.shot, objective.best.offset_s, options);
+  best.evaluations = evaluations + 1;
+  return best;
+}
+
+// ---- Calibration ----
+
+std::vector<double> constants_of(const phys::Scene& s) {
+  return {s.cloth.mu_slide,
+          s.cloth.mu_roll,
+          s.cloth.mu_spin,
+          s.ball_and_cushion.mu_cushion,
+          s.ball_and_cushion.restitution,
+          s.ball_and_cushion.cushion_height,
+          s.ball_contact.mu_ball,
+          s.ball_contact.restitution};
+}
+
+void set_constants(const std::vector<double>& c, phys::Scene* s) {
+  s->cloth.mu_slide = s->ball_and_cushion.mu_table = c[0];
+  s->cloth.mu_roll = c[1];
+  s->cloth.mu_spin = c[2];
+  s->ball_and_cushion.mu_cushion = c[3];
+  s->ball_and_cushion.restitution = c[4];
+  s->ball_and_cushion.cushion_height = c[5];
+  s->ball_contact.mu_ball = c[6];
+  s->ball_contact.restitution = c[7];
+}
+
+std::vector<double> constant_lower_bounds() {
+  return {0.05, 0.001, 0.001, 0.0, 0.5, 0.032, 0.0, 0.7};
+}
+std::vector<double> constant_upper_bounds() {
+  return {0.5, 0.02, 0.06, 0.5, 1.0, 0.042, 0.2, 1.0};
+}
+
+namespace {
+
+// The summed loss of `shots` (indices into all) with their strokes fixed.
+struct ConstantsObjective {
+  const std::vector<ShotData>* all;
+  const std::vector<size_t>* shots;
+  const std::vector<StrokeFit>* strokes;
+  const FitOptions* fit;
+  unsigned threads;
+  std::vector<double> lo, hi;
+  int refit_evaluations = 0;  // > 0: each stroke refitted (local) at every evaluation
+  double best = kInf;
+  std::vector<double> best_c;
+  std::vector<double> constants(const double* u) const {
+    std::vector<double> c(kConstantCount);
+    for (int i = 0; i < kConstantCount; ++i) c[i] = lo[i] + u[i] * (hi[i] - lo[i]);
+    return c;
+  }
+  double loss_at(const std::vector<double>& c) const {
+    std::vector<double> losses(shots->size(), 0.0);
+    phys::parallel_for(shots->size(), threads, [&](size_t i, unsigned) {
+      const ShotData& d = (*all)[(*shots)[i]];
+      phys::Scene s = d.scene;
+      set_constants(c, &s);
+      const phys::CompiledScene cs(s);
+      if (!cs.ok()) {
+        losses[i] = kFailedLoss;
+        return;
+      }
+      const StrokeFit& st = (*strokes)[(*shots)[i]];
+      if (refit_evaluations > 0) {  // the stroke refitted inside (a profile of the loss)
+        FitOptions quick = *fit;
+        quick.local_evaluations = refit_evaluations;
+        losses[i] = fit_stroke(cs, d, quick, &st).loss;
+      } else {
+        losses[i] = evaluate_stroke(cs, d, st.shot, st.offset_s, *fit).loss;
+      }
+    });
+    double sum = 0;
+    for (double l : losses) sum += l;
+    return sum;
+  }
+  double operator()(const double* u) {
+    const std::vector<double> c = constants(u);
+    const double l = loss_at(c);
+    if (l < best) {
+      best = l;
+      best_c = c;
+    }
+    return l;
+  }
+};
+
+// Fits strokes of `shots` with constants `c` (full fits, or refits from `strokes`).
+void fit_strokes(const std::vector<ShotData>& all, const std::vector<size_t>& shots,
+                 const std::vector<double>& c, const FitOptions& fit, unsigned threads,
+                 bool refit, std::vector<StrokeFit>* strokes) {
+  phys::parallel_for(shots.size(), threads, [&](size_t i, unsigned) {
+    const ShotData& d = all[shots[i]];
+    phys::Scene s = d.scene;
+    set_constants(c, &s);
+    const phys::CompiledScene cs(s);
+    StrokeFit& st = (*strokes)[shots[i]];
+    if (!cs.ok()) {
+      st.rmse_cue_m = st.rmse_all_m = kInf;
+      st.loss = kFailedLoss;
+      return;
+    }
+    st = refit ? fit_stroke(cs, d, fit, &st) : fit_stroke(cs, d, fit);
+  });
+}
+
+// Alternates constants (strokes fixed) and strokes (constants fixed) on `shots`.
+std::vector<double> fit_constants(const std::vector<ShotData>& all, const std::vector<size_t>& shots,
+                                  std::vector<double> c, std::vector<StrokeFit>* strokes,
+                                  const CalibrationOptions& o, unsigned threads,
+                                  const std::function<void(const std::string&)>& progress,
+                                  const std::string& label) {
+  for (int round = 1; round <= o.rounds; ++round) {
+    ConstantsObjective obj{&all,
+                           &shots,
+                           strokes,
+                           &o.fit,
+                           threads,
+                           constant_lower_bounds(),
+                           constant_upper_bounds(),
+                           o.refit_evaluations,
+                           kInf,
+                           {}};
+    std::vector<double> u(kConstantCount);
+    for (int i = 0; i < kConstantCount; ++i) u[i] = (c[i] - obj.lo[i]) / (obj.hi[i] - obj.lo[i]);
+    obj.best = obj.loss_at(c);
+    obj.best_c = c;
+    const double before = obj.best;
+    detail::StageSettings l;
+    l.algorithm = NLOPT_LN_BOBYQA;
+    l.max_evaluations = o.constant_evaluations;
+    l.initial_step = 0.05;
+    l.x_tolerance = 1e-5;
+    int calls = 0;
+    auto counted = [&obj, &calls](const double* x) {
+      ++calls;
+      return obj(x);
+    };
+    const nlopt_result code = detail::run_stage(l, &u, &counted);
+    c = obj.best_c;
+    fit_strokes(all, shots, c, o.fit, threads, /*refit=*/true, strokes);
+    double after = 0;
+    for (size_t i : shots) after += (*strokes)[i].loss;
+    if (progress)
+      progress(fmt::format(
+          "{}: round {}: loss {:.5g} -> {:.5g} (constants, {} evaluations, NLopt {}), {:.5g} "
+          "(strokes)",
+          label, round, before, obj.best, calls, static_cast<int>(code), after));
+  }
+  return c;
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const std::vector<ShotData>& shots, const phys::Scene& start,
+                            const CalibrationOptions& o,
+                            const std::function<void(const std::string&)>& progress) {
+  CalibrationResult res;
+  const unsigned threads = phys::thread_count(o.threads);
+  const size_t n = shots.size();
+  const int folds = std::max(1, std::min<int>(o.folds, static_cast<int>(n)));
+  const std::vector<double> c0 = constants_of(start);
+  std::vector<size_t> every(n);
+  for (size_t i = 0; i < n; ++i) {
+    every[i] = i;
+    res.ids.push_back(shots[i].id);
+    res.fold_of.push_back(static_cast<int>(i % static_cast<size_t>(folds)));
+  }
+  // The strokes with the starting constants: the "before" errors and every fold's start.
+  std::vector<StrokeFit> base(n);
+  if (progress) progress(fmt::format("fitting {} shots with the starting constants", n));
+  fit_strokes(shots, every, c0, o.fit, threads, false, &base);
+  for (const StrokeFit& f : base) res.rmse_before_m.push_back(f.rmse_cue_m);
+  res.rmse_heldout_m.assign(n, kInf);
+  for (int f = 0; f < folds && folds > 1; ++f) {
+    std::vector<size_t> train, test;
+    for (size_t i = 0; i < n; ++i) (res.fold_of[i] == f ? test : train).push_back(i);
+    std::vector<StrokeFit> strokes = base;
+    const std::vector<double> c =
+        fit_constants(shots, train, c0, &strokes, o, threads, progress,
+                      fmt::format("fold {}/{}", f + 1, folds));
+    res.fold_constants.push_back(c);
+    // Held out: each test shot's stroke fitted afresh with the fold's constants.
+    fit_strokes(shots, test, c, o.fit, threads, false, &strokes);
+    for (size_t i : test) res.rmse_heldout_m[i] = strokes[i].rmse_cue_m;
+  }
+  // The constants written out: fitted on every shot.
+  std::vector<StrokeFit> strokes = base;
+  res.constants = fit_constants(shots, every, c0, &strokes, o, threads, progress, "all shots");
+  for (size_t i = 0; i < n; ++i) res.rmse_all_shots_m.push_back(strokes[i].rmse_cue_m);
+  // Uncertainties: the spread across folds, and the change of one constant (strokes and
+  // the others fixed) that raises the all-shot loss by 1 %.
+  ConstantsObjective obj{&shots,
+                         &every,
+                         &strokes,
+                         &o.fit,
+                         threads,
+                         constant_lower_bounds(),
+                         constant_upper_bounds(),
+                         o.refit_evaluations,
+                         kInf,
+                         {}};
+  const double l0 = obj.loss_at(res.constants);
+  for (int i = 0; i < kConstantCount; ++i) {
+    ConstantReport r;
+    r.name = kConstantNames[i];
+    r.value = res.constants[i];
+    if (!res.fold_constants.empty()) {
+      double mean = 0, var = 0;
+      for (const auto& fc : res.fold_constants) mean += fc[i];
+      mean /= static_cast<double>(res.fold_constants.size());
+      for (const auto& fc : res.fold_constants) var += sq(fc[i] - mean);
+      r.fold_spread = std::sqrt(var / static_cast<double>(res.fold_constants.size()));
+    }
+    const double h = 0.05 * (obj.hi[i] - obj.lo[i]);
+    std::vector<double> plus = res.constants, minus = res.constants;
+    plus[i] = std::min(obj.hi[i], plus[i] + h);
+    minus[i] = std::max(obj.lo[i], minus[i] - h);
+    const double rise = 0.5 * (obj.loss_at(plus) + obj.loss_at(minus)) - l0;
+    const double step = 0.5 * (plus[i] - minus[i]);
+    r.half_width = rise > 0 ? step * std::sqrt(0.01 * l0 / rise) : kInf;
+    // Constrained: a 1 % rise within a fifth of the value (and of the search range).
+    r.constrained = r.half_width < 0.2 * std::min(std::fabs(r.value), obj.hi[i] - obj.lo[i]);
+    res.report.push_back(r);
+  }
+  return res;
+}
+
+}  // namespace cueplan::planner
