@@ -296,7 +296,9 @@ def check_forgiving(driver, shots):
     best = max(c["success"] for c in data)
     print(f"how forgiving: {len(data)} cells in {len(percents)} progress steps {percents}, "
           f"success 0 to {100 * best:.0f} %, {len({c['fill'] for c in data})} shades")
+    driver.execute_script("document.getElementById('spin-legend').scrollIntoView({block: 'end'})")
     driver.save_screenshot(os.path.join(shots, "serve_spin_map_success.png"))
+    driver.execute_script("window.scrollTo(0, 0)")
     driver.find_element(By.ID, "forgiving").click()
     wait_for(driver, "the map by where the spins stop", lambda d: not d.find_elements(By.ID, "success-scale"))
 
