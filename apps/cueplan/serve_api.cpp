@@ -510,11 +510,31 @@ ApiReply Api::simulate(std::string_view body) const {
   });
 }
 
+namespace {
+
+// The spins a grid holds inside its disc (the spin map's points): (i, j) with
+// (2i - n + 1)^2 + (2j - n + 1)^2 <= (n - 1)^2.
+size_t disc_point_count(int grid) {
+  size_t count = 0;
+  const long n = grid;
+  for (long i = 0; i < n; ++i)
+    for (long j = 0; j < n; ++j) {
+      const long a = 2 * i - (n - 1), b = 2 * j - (n - 1);
+      count += a * a + b * b <= (n - 1) * (n - 1);
+    }
+  return count;
+}
+
+}  // namespace
+
 ApiReply Api::spinmap(std::string_view body) const {
   const Clock::time_point started = Clock::now();
   return answer([&] {
     const ordered_json request = parse_body(body);
-    check_keys(request, {"problem", "speed", "aim_deg", "grid", "options"}, "");
+    check_keys(request,
+               {"problem", "speed", "aim_deg", "grid", "options", "success", "samples",
+                "success_from", "success_count"},
+               "");
     const ordered_json* speed = member(request, "speed");
     const ordered_json* aim = member(request, "aim_deg");
     if ((speed == nullptr) != (aim == nullptr))
@@ -540,6 +560,50 @@ ApiReply Api::spinmap(std::string_view body) const {
                                       limits_.max_grid, grid));
     }
     const SearchInputs in = read_search_options(options_of(request), default_method_, limits_);
+    // How forgiving each spin is, on request: `samples` noisy strokes for each of the
+    // cells [success_from, success_from + success_count) in the map's order.
+    bool success = false;
+    if (const ordered_json* f = member(request, "success")) success = read_bool(*f, "success");
+    for (const char* key : {"samples", "success_from", "success_count"})
+      if (!success && member(request, key))
+        throw bad(key, std::string(key) + " is given only with success: true");
+    int samples = kDefaultSuccessSamples;
+    size_t success_from = 0, success_count = 0;
+    if (success) {
+      if (const ordered_json* n = member(request, "samples")) {
+        samples = read_whole(*n, "samples");
+        if (samples < 1 || samples > limits_.max_success_samples)
+          throw bad("samples", fmt::format("samples must be 1 to {} noisy strokes a spin on this "
+                                           "server, got {}",
+                                           limits_.max_success_samples, samples));
+      }
+      const size_t cells = disc_point_count(grid);
+      if (const ordered_json* n = member(request, "success_from")) {
+        const int from = read_whole(*n, "success_from");
+        if (from < 0 || static_cast<size_t>(from) >= cells)
+          throw bad("success_from", fmt::format("success_from must be 0 to {} (the grid's {} "
+                                                "spins), got {}",
+                                                cells - 1, cells, from));
+        success_from = static_cast<size_t>(from);
+      }
+      success_count = cells - success_from;
+      if (const ordered_json* n = member(request, "success_count")) {
+        const int count = read_whole(*n, "success_count");
+        if (count < 1) throw bad("success_count", fmt::format("success_count must be at least 1, got {}", count));
+        success_count = std::min(success_count, static_cast<size_t>(count));
+      }
+      if (static_cast<double>(samples) * static_cast<double>(success_count) >
+          limits_.max_success_strokes)
+        throw bad("success_count",
+                  fmt::format("samples x success_count must be at most {} noisy strokes in one "
+                              "request on this server, got {} x {}: ask for the cells in parts",
+                              limits_.max_success_strokes, samples, success_count));
+      if (!std::isfinite(in.planner.noise) || in.planner.noise < 0.0 || in.planner.noise > 10.0)
+        throw bad("options.noise",
+                  fmt::format("options.noise must be 0 to 10 (times a club player's scatter), "
+                              "got {}",
+                              in.planner.noise));
+    }
     phys::SimulationOptions simulation = read_impact(in.impact);
     plan::PlannerOptions planner_options;
     if (!stroke_given) planner_options = read_planner(in, simulation);
@@ -562,6 +626,15 @@ ApiReply Api::spinmap(std::string_view body) const {
     map_options.grid = grid;
     map_options.threads = 1;  // as solve: the worker pool is the server's concurrency
     map_options.simulation = simulation;
+    if (success) {
+      map_options.success_samples = samples;
+      map_options.success_first = success_from;
+      map_options.success_count = success_count;
+      map_options.noise.scale = in.planner.noise;
+      map_options.seed = in.planner.seed;
+      map_options.deadline = started + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(limits_.max_time_s));
+    }
     const plan::SpinMap map = plan::spin_map(problem, v, aim_deg, map_options);
     if (!map.message.empty()) throw library_error(map.error, map.message);
     if (map.points.empty()) throw Stop{error_reply(422, "no spin lies within the disc", "grid")};
@@ -570,6 +643,12 @@ ApiReply Api::spinmap(std::string_view body) const {
     ApiReply reply;
     reply.body = spinmap_json(problem, map, source, simulation, "", seconds);
     reply.body["cells"] = spinmap_cells_json(problem, map);
+    if (success) {
+      reply.body["success"]["from"] = success_from;
+      reply.body["success"]["count"] = success_count;
+      reply.body["success"]["noise"] = in.planner.noise;
+      reply.body["success"]["seed"] = in.planner.seed;
+    }
     if (in.time_clamped && !stroke_given) reply.body["note"] = time_note(in, limits_);
     add_warnings(reply, problem,
                  prob::check_stroke_ranges(phys::Shot{v, aim_deg, 0.0, 0.0},
@@ -610,6 +689,8 @@ ApiReply Api::health(int workers, int busy) const {
                   {"max_samples", limits_.max_samples},
                   {"max_alternatives", limits_.max_alternatives},
                   {"max_grid", limits_.max_grid},
+                  {"max_success_samples", limits_.max_success_samples},
+                  {"max_success_strokes", limits_.max_success_strokes},
                   {"max_events", limits_.max_events}}}};
   return reply;
 }

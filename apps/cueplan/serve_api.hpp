@@ -41,6 +41,10 @@ struct ApiLimits {
   int max_alternatives = 10;
   int max_grid = 61;              // spin map points across the disc (about 0.785 grid^2 shots)
   int max_events = 1000;          // simulate's event cap
+  // The spin map's success under noise: noisy strokes per cell, and strokes in all (samples
+  // times the cells asked for) in one request; a page asks for the cells in parts.
+  int max_success_samples = 200;
+  int max_success_strokes = 40000;
 };
 
 // An answer: the HTTP status and its JSON body.

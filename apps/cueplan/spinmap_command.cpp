@@ -191,6 +191,23 @@ void write_text(std::ostream& out, const prob::Problem& problem, const plan::Spi
            (problem.pot ? ", " + std::to_string(c.of(SpinCellKind::no_pot)) + " for which no aim pots " +
                               problem.pot->ball + " (each spin's aim solved to keep the pot)"
                         : std::string()));
+  if (map.success_samples > 0) {
+    const plan::SpinMapPoint* best = nullptr;
+    double sum = 0.0;
+    for (const plan::SpinMapPoint& p : map.points) {
+      if (!p.success) continue;
+      sum += *p.success;
+      if (!best || *p.success > *best->success) best = &p;
+    }
+    std::string text = std::to_string(map.success_samples) + " noisy strokes a spin: ";
+    if (best)
+      text += fmt::format("mean {:.0f} %, best {:.0f} % with k_T = ", 100.0 * sum / map.success_cells,
+                          100.0 * *best->success) +
+              number(best->topspin_k) + ", k_S = " + number(best->sidespin_k);
+    else
+      text += "none estimated";
+    line("success", text);
+  }
   line("method", method_text(simulation, problem.scene));
   line("picture", file);
   line("time", fmt::format("{:.3g} s", seconds));
@@ -205,6 +222,13 @@ ordered_json point_json(const plan::SpinMapPoint& p) {
           {"miss_distance",
            std::isfinite(p.miss_distance) ? ordered_json(p.miss_distance) : ordered_json()},
           {"cushion_hits", p.cushion_hits}};
+}
+
+// A point's JSON with its success under noise when it was estimated.
+ordered_json point_json_with_success(const plan::SpinMapPoint& p) {
+  ordered_json j = point_json(p);
+  if (p.success) j["success"] = *p.success;
+  return j;
 }
 
 // The outcome class of a grid spin by the name `outcomes` counts it under.
@@ -246,10 +270,15 @@ ordered_json spinmap_json(const prob::Problem& problem, const plan::SpinMap& map
   j["landing"] = map.landing;
   ordered_json landing = ordered_json::array();
   for (const plan::SpinMapPoint& p : map.points)
-    if (p.lands) landing.push_back(point_json(p));
+    if (p.lands) landing.push_back(point_json_with_success(p));
   j["landing_spins"] = landing;
   const plan::SpinMapPoint* p = nearest(map, problem.limits);
-  j["nearest"] = p ? point_json(*p) : ordered_json();
+  j["nearest"] = p ? point_json_with_success(*p) : ordered_json();
+  if (map.success_samples > 0)
+    j["success"] = {{"samples", map.success_samples},
+                    {"cells", map.success_cells},
+                    {"complete", map.success_complete},
+                    {"unit", "fraction of the noisy strokes that solve the problem, 0..1"}};
   const Counts c = counts_of(map, problem.limits);
   j["outcomes"] = {{"at_rest_allowed_cushions", c.of(SpinCellKind::distance)},
                    {"at_rest_other_cushions", c.of(SpinCellKind::wrong_cushions)},
@@ -285,7 +314,7 @@ ordered_json spinmap_json(const prob::Problem& problem, const plan::SpinMap& map
 ordered_json spinmap_cells_json(const prob::Problem& problem, const plan::SpinMap& map) {
   ordered_json cells = ordered_json::array();
   for (const plan::SpinMapPoint& p : map.points) {
-    ordered_json cell = point_json(p);
+    ordered_json cell = point_json_with_success(p);
     cell["outcome"] = phys::to_string(p.outcome);
     cell["kind"] = outcome_key(classify(p, problem.limits));
     cell["lands"] = p.lands;
@@ -316,6 +345,15 @@ draw::SpinMapScene picture_of(const prob::Problem& problem, const plan::SpinMap&
             : fmt::format("Each cell is one tip offset struck at this speed and aim, coloured by how far from "
                           "the target the cue ball stops; {} of {} spins land (outlined).",
                           map.landing, map.points.size());
+  if (map.success_samples > 0) {
+    // The cells show how forgiving each spin is instead.
+    const std::string was = "coloured by how far from the target the cue ball stops";
+    const size_t at = buf.find(was);
+    if (at != std::string::npos)
+      buf.replace(at, was.size(),
+                  fmt::format("coloured by its success under noise ({} noisy strokes)",
+                              map.success_samples));
+  }
   picture.caption.push_back(buf);
   if (source.planned)
     picture.caption.push_back("Speed and aim are the planner's best stroke (" +
@@ -391,6 +429,12 @@ SpinmapCommand::SpinmapCommand(CLI::App& parent) {
       ->group(stroke);
   add_impact_flags(c, &args_.impact, "Cushion impacts");
   add_planner_flags(c, &args_.planner, "Planner (only without --speed and --aim)");
+  c.add_flag("--success", args_.success,
+             "How forgiving each spin is: shade the cells by the success under the execution "
+             "noise (--samples noisy strokes a spin, default " +
+                 std::to_string(kDefaultSuccessSamples) +
+                 ", with --noise and --seed) rather than by where they stop")
+      ->group(stroke);
   c.add_flag("--json", args_.json,
              "Print a JSON summary instead of text: speed, aim_deg, stroke_source, grid, points, "
              "landing, landing_spins, nearest, outcomes, out")
@@ -440,6 +484,14 @@ std::string SpinmapCommand::read_inputs(Inputs* inputs) const {
     return "--threads must be 0 (one per core) or more, got " + std::to_string(args_.threads);
   if (std::string why = read_impact_options(args_.impact, &inputs->simulation); !why.empty())
     return why;
+  if (args_.success && given("--samples") &&
+      (args_.planner.samples < 1 || args_.planner.samples > kMaxSuccessSamples))
+    return "--samples must be 1 to " + std::to_string(kMaxSuccessSamples) +
+           " noisy strokes a spin with --success, got " + std::to_string(args_.planner.samples);
+  if (args_.success && (!std::isfinite(args_.planner.noise) || args_.planner.noise < 0.0 ||
+                        args_.planner.noise > 10.0))
+    return "--noise must be 0 to 10 (times a club player's scatter), got " +
+           number(args_.planner.noise);
   if (!speed_given)
     if (std::string why = read_planner_options(args_.planner, args_.threads, inputs->simulation,
                                                &inputs->planner_options);
@@ -502,6 +554,12 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
   ProgressBar bar(err, std::string(kCommandName) + ": simulating " + std::to_string(args_.grid) +
                            " x " + std::to_string(args_.grid) + " spins");
   map_options.progress = [&bar](double fraction) { bar.update(fraction); };
+  if (args_.success) {
+    map_options.success_samples =
+        given("--samples") ? args_.planner.samples : kDefaultSuccessSamples;
+    map_options.noise.scale = args_.planner.noise;
+    map_options.seed = args_.planner.seed;
+  }
   const plan::SpinMap map = plan::spin_map(problem, speed, aim_deg, map_options);
   bar.finish();
   if (!map.message.empty()) return usage(map.message);
@@ -520,8 +578,11 @@ int SpinmapCommand::run(std::ostream& out, std::ostream& err) const {
     return usage("--out: " + why);
 
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
-  if (args_.json)
-    out << spinmap_json(problem, map, source, simulation, args_.out_file, seconds).dump(2) << '\n';
+  if (args_.json) {
+    ordered_json j = spinmap_json(problem, map, source, simulation, args_.out_file, seconds);
+    if (map.success_samples > 0) j["cells"] = spinmap_cells_json(problem, map);
+    out << j.dump(2) << '\n';
+  }
   else
     write_text(out, problem, map, source, simulation, args_.out_file, seconds);
   return out ? kExitOk : kExitFailed;

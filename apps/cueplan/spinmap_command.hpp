@@ -33,7 +33,12 @@ struct SpinmapArgs {
   ImpactArgs impact;
   PlannerArgs planner;  // used only without --speed and --aim
   bool json = false;
+  bool success = false;  // --success: shade the cells by the success under noise
 };
+
+// Noisy strokes per spin with --success when --samples is not given, and the most.
+inline constexpr int kDefaultSuccessSamples = 24;
+inline constexpr int kMaxSuccessSamples = 10000;
 
 class SpinmapCommand {
  public:

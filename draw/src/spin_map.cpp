@@ -130,6 +130,7 @@ struct Layout {
   double bar_label_top = 0.0;
   double legend_top = 0.0;
   std::optional<detail::Legend> legend;
+  int success_samples = 0;  // > 0: the cells show the success under noise
   std::shared_ptr<Canvas> table;
   double table_left = 0.0, table_top = 0.0;
   double width = 0.0, height = 0.0;
@@ -157,7 +158,10 @@ std::vector<Cell> cells_of(const plan::SpinMap& map, const prob::Problem& proble
     Cell& c = at(row, col);
     c.point = static_cast<int>(i);
     c.kind = classify(p, problem.limits);
-    c.colour = cell_colour(c.kind, p.miss_distance, scale);
+    // Asked for how forgiving each spin is: its success under noise, or "no outcome"
+    // for a cell that was not estimated.
+    c.colour = map.success_samples > 0 ? (p.success ? viridis(*p.success) : kNoResult)
+                                       : cell_colour(c.kind, p.miss_distance, scale);
   }
   const double half = 0.5 * (n - 1);
   const double cell_d = 2.0 * d.radius_d / std::max(1, n - 1);
@@ -241,6 +245,13 @@ std::vector<detail::LegendEntry> legend_entries(const SpinMapScene& s) {
                                     (problem.limits.cushions_max == 1 ? " cushion" : " cushions") +
                                     ", outlined" + spins(map.landing)});
   const auto count = [&](SpinCellKind k) { return counts[static_cast<int>(k)]; };
+  if (map.success_samples > 0) {
+    // The cells' colours are the success under noise: the kinds' swatches would not match.
+    const int missing = static_cast<int>(map.points.size()) - map.success_cells;
+    if (missing > 0)
+      entries.push_back({swatch(Swatch::no_result), "not estimated (stopped by the deadline)" +
+                                                        spins(missing)});
+  } else {
   if (count(SpinCellKind::wrong_cushions) > 0)
     entries.push_back(
         {swatch(Swatch::wrong_cushions),
@@ -259,6 +270,7 @@ std::vector<detail::LegendEntry> legend_entries(const SpinMapScene& s) {
     entries.push_back({swatch(Swatch::no_pot), "no aim pots " + problem.pot->ball +
                                                    " with this spin" +
                                                    spins(count(SpinCellKind::no_pot))});
+  }
   if (s.marked_shot) entries.push_back({swatch(Swatch::marked), "the planner's spin"});
   entries.push_back(
       {swatch(Swatch::miscue), fmt::format("spin limit: tip offset {:.3g} R (k = {:.3g})",
@@ -291,8 +303,10 @@ TableScene table_scene_of(const SpinMapScene& s, const Layout& l) {
     const SpinCellKind kind = classify(p, problem.limits);
     TableDot dot;
     dot.position = p.final_position;
-    dot.colour =
-        kind == SpinCellKind::pocketed ? kHatch : cell_colour(kind, p.miss_distance, l.scale);
+    dot.colour = s.map.success_samples > 0
+                     ? (p.success ? viridis(*p.success) : kNoResult)
+                     : kind == SpinCellKind::pocketed ? kHatch
+                                                      : cell_colour(kind, p.miss_distance, l.scale);
     dot.radius = p.lands ? 3.5 : 2.6;
     if (p.lands) dot.outline = kOutline;
     t.dots.push_back(dot);
@@ -309,6 +323,7 @@ Layout lay_out(const SpinMapScene& s, const Typesetter& type) {
   const plan::SpinMap& map = s.map;
   l.scale = miss_colour_scale(map, s.problem);
   l.grid = map.grid;
+  l.success_samples = map.success_samples;
 
   // The table panel, drawn first: its size sets the picture's.
   TableStyle table_style;
@@ -424,7 +439,8 @@ void disc(Canvas& c, const Layout& l, const SpinMapScene& s) {
       const Box b = square(row, col);
       c.fill(Path().rect(b.left, b.top - kOverlap, b.width() + kOverlap, b.height() + kOverlap),
              k.colour, k.rim ? "cell-rim" : "cell");
-      if (k.kind == SpinCellKind::pocketed) pocketed.rect(b.left, b.top, b.width(), b.height());
+      if (k.kind == SpinCellKind::pocketed && l.success_samples == 0)
+        pocketed.rect(b.left, b.top, b.width(), b.height());
     }
   if (!pocketed.empty()) {
     c.clip(pocketed);
@@ -500,7 +516,33 @@ void disc_axes(Canvas& c, const Layout& l, const Typesetter& type) {
          {0.5, VAnchor::middle}, detail::ink(), "axis-label", 90.0);
 }
 
+// The colour bar of the success under noise: 0 % dark to 100 % bright.
+void success_bar(Canvas& c, const Layout& l, const Typesetter& type) {
+  const Path bar = Path().rect(l.bar_left, l.bar_top, l.bar_width, kBarHeight);
+  std::vector<Canvas::Stop> stops;
+  for (int i = 0; i <= 10; ++i) stops.push_back({i / 10.0, viridis(i / 10.0)});
+  c.fill_gradient(bar, {l.bar_left, 0.0}, {l.bar_left + l.bar_width, 0.0}, std::move(stops),
+                  "colour-bar");
+  c.stroke(bar, Pen{detail::axis_grey(), 0.8}, "");
+  const Font font{0.85 * kFont};
+  Path marks;
+  for (int percent = 0; percent <= 100; percent += 25) {
+    const double x = l.bar_left + l.bar_width * percent / 100.0;
+    marks.move_to(x, l.bar_top + kBarHeight).line_to(x, l.bar_top + kBarHeight + 4.0);
+    const double anchor = percent == 0 ? 0.0 : percent == 100 ? 1.0 : 0.5;
+    Text t = type.set(std::to_string(percent), font);
+    const Box box = detail::text_box(t, x, l.bar_top + kBarHeight + 4.0, {anchor, VAnchor::top});
+    c.text(t, box.left, box.top, detail::kTopLeft, detail::axis_grey(), "tick-label");
+  }
+  c.stroke(marks, Pen{detail::axis_grey(), 1.0}, "tick");
+  c.text(type.set(fmt::format("success under noise, % ({} noisy strokes a spin)",
+                              l.success_samples),
+                  Font{0.9 * kFont}),
+         l.bar_left, l.bar_label_top, detail::kTopLeft, detail::ink(), "axis-label");
+}
+
 void colour_bar(Canvas& c, const Layout& l, const Typesetter& type) {
+  if (l.success_samples > 0) return success_bar(c, l, type);
   const Path bar = Path().rect(l.bar_left, l.bar_top, l.bar_width, kBarHeight);
   std::vector<Canvas::Stop> stops;
   for (int i = 0; i <= 10; ++i) stops.push_back({i / 10.0, viridis(1.0 - i / 10.0)});

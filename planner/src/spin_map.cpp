@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cueplan/physics/parallel.hpp"
+#include "robustness.hpp"
 #include "search_space.hpp"
 #include "task.hpp"
 
@@ -16,6 +17,7 @@ namespace {
 namespace phys = cueplan::physics;
 
 using phys::kSpinPerTipOffset;
+using Clock = std::chrono::steady_clock;
 
 // The grid's spins inside the disc of radius spin_max, row by row from the top
 // (most topspin) down, each row from the left (most left spin) to the right. The
@@ -82,6 +84,11 @@ phys::Validation SpinMapOptions::validate() const {
     return invalid({"spin_max"}, "must be finite and not negative (0: the problem's limit)",
                    spin_max);
   if (threads < 0) return invalid({"threads"}, "must be 0 (one per core) or more", threads);
+  if (success_samples < 0 || success_samples > 100000)
+    return invalid({"success_samples"}, "must be 0 (not estimated) to 100000", success_samples);
+  if (success_samples > 0) {
+    if (phys::Validation e = noise.validate()) return e->under({"noise"});
+  }
   return {};
 }
 
@@ -138,10 +145,54 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
     const double reach = task.pot_aim->lateral_reach();
     if (at && problems::makes_pot(problem, centre)) lateral = std::clamp(*at, -reach, reach);
   }
-  physics::parallel_for(
-      total, threads,
-      [&](size_t i, unsigned) { land(task, speed, aim_deg, lateral, simulation, &map.points[i]); },
-      report);
+  const bool estimate = options.success_samples > 0;
+  if (!estimate) {
+    physics::parallel_for(
+        total, threads,
+        [&](size_t i, unsigned) { land(task, speed, aim_deg, lateral, simulation, &map.points[i]); },
+        report);
+  } else {
+    // The estimates cost success_samples strokes a cell against one for the map: the
+    // map's part of the progress is weighed so.
+    const size_t first = std::min(options.success_first, total);
+    const size_t count = std::min(options.success_count, total - first);
+    const double map_share =
+        1.0 / (1.0 + static_cast<double>(options.success_samples) * static_cast<double>(count) /
+                         static_cast<double>(std::max<size_t>(total, 1)));
+    int shown[2] = {-1, -1};  // the per cent last reported by each stage
+    const auto weighed = [&](double share, double offset, size_t items, int* last) {
+      return [&options, share, offset, items, last](size_t finished) {
+        if (!options.progress) return;
+        const int percent = static_cast<int>(100 * finished / std::max<size_t>(items, 1));
+        if (percent == *last && finished < items) return;
+        *last = percent;
+        options.progress(offset + share * static_cast<double>(finished) /
+                                      static_cast<double>(std::max<size_t>(items, 1)));
+      };
+    };
+    physics::parallel_for(
+        total, threads,
+        [&](size_t i, unsigned) { land(task, speed, aim_deg, lateral, simulation, &map.points[i]); },
+        weighed(map_share, 0.0, total, &shown[0]));
+    map.success_samples = options.success_samples;
+    const std::vector<detail::NoiseDraw> draws =
+        detail::noise_draws(options.success_samples, options.seed);
+    const auto deadline = options.deadline;
+    physics::parallel_for(
+        count, threads,
+        [&](size_t j, unsigned) {
+          SpinMapPoint& p = map.points[first + j];
+          if (Clock::now() >= deadline) return;
+          const phys::Shot shot{speed, p.aim_deg, p.topspin_k, p.sidespin_k};
+          const detail::Sampled s =
+              detail::sample_success(task, shot, draws, options.noise, simulation, deadline);
+          // A cell the deadline cut short has no estimate.
+          if (s.outcomes.size() == draws.size()) p.success = s.success.both.p;
+        },
+        weighed(1.0 - map_share, map_share, count, &shown[1]));
+    for (const SpinMapPoint& p : map.points) map.success_cells += p.success.has_value();
+    map.success_complete = map.success_cells == static_cast<int>(count);
+  }
 
   map.landing = static_cast<int>(std::count_if(map.points.begin(), map.points.end(),
                                                [](const SpinMapPoint& p) { return p.lands; }));

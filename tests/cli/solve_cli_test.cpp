@@ -296,7 +296,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"SpinmapAimWithoutSpeed", "spinmap {one_rail} --aim 0 --out x.svg", "--speed"},
         BadInput{"SpinmapZeroSpeed", "spinmap {one_rail} --speed 0 --aim 0 --out x.svg", "--speed"},
         BadInput{"SpinmapTinyGrid", "spinmap {one_rail} --speed 1 --aim 0 --grid 2 --out x.svg",
-                 "--grid"}),
+                 "--grid"},
+        BadInput{"SpinmapSuccessNoSamples",
+                 "spinmap {one_rail} --speed 1 --aim 0 --success --samples 0 --out x.svg",
+                 "--samples"},
+        BadInput{"SpinmapSuccessTooManySamples",
+                 "spinmap {one_rail} --speed 1 --aim 0 --success --samples 20000 --out x.svg",
+                 "--samples"}),
     [](const ::testing::TestParamInfo<BadInput>& param) { return std::string(param.param.name); });
 
 // ---------------------------------------------------------------------------
@@ -344,6 +350,48 @@ TEST(Spinmap, SvgHasOneCellPerSpinAndOutlinesTheLandingOnes) {
         {1.002, -60.36, p["topspin_k"].get<double>(), p["sidespin_k"].get<double>()});
     EXPECT_TRUE(prob::reaches_target(problem, r));
   }
+}
+
+// --success: every cell gets the fraction of its noisy strokes that solve the problem,
+// and a cell's value is what `simulate --samples` estimates for that cell's stroke with
+// the same seed (the same noise draws).
+TEST(Spinmap, SuccessShadesEveryCellAndAgreesWithSimulate) {
+  const fs::path svg = scratch() / "success.svg";
+  const ProcessResult run =
+      cueplan("spinmap '" + problem_path("one_rail_position") + "' " + kOneRailStroke +
+              " --grid 7 --success --samples 12 --seed 11 --json --out '" + svg.string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  // The picture's text is drawn as glyphs; its description says what the cells show.
+  EXPECT_NE(read_text(svg).find("success under noise (12 noisy strokes)"), std::string::npos);
+  const json j = parsed(run);
+  EXPECT_EQ(j.at("success").at("samples"), 12);
+  EXPECT_EQ(j.at("success").at("complete"), true);
+  ASSERT_EQ(j.at("cells").size(), disc_points(7));
+  const json* best = nullptr;
+  for (const json& c : j.at("cells")) {
+    const double p = c.at("success").get<double>();
+    EXPECT_GE(p, 0.0);
+    EXPECT_LE(p, 1.0);
+    EXPECT_DOUBLE_EQ(p * 12.0, std::round(p * 12.0)) << "a count of 12 strokes";
+    if (!best || p > (*best)["success"].get<double>()) best = &c;
+  }
+  ASSERT_NE(best, nullptr);
+  EXPECT_GT((*best)["success"].get<double>(), 0.0) << "some spin succeeds sometimes";
+  const ProcessResult sim = cueplan(
+      "simulate '" + problem_path("one_rail_position") + "' --method exact --speed 1.002 --aim " +
+          fmt_exact((*best)["aim_deg"]) + " --topspin-k " + fmt_exact((*best)["topspin_k"]) +
+          " --sidespin-k " + fmt_exact((*best)["sidespin_k"]) + " --samples 12 --seed 11 --json",
+      "sim");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_EQ(parsed(sim).at("success").at("both").at("p").get<double>(),
+            (*best)["success"].get<double>());
+  // Without --success, no cell list and no success.
+  const ProcessResult plain =
+      cueplan("spinmap '" + problem_path("one_rail_position") + "' " + kOneRailStroke +
+              " --grid 7 --json --out '" + svg.string() + "'");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_FALSE(parsed(plain).contains("success"));
+  EXPECT_FALSE(parsed(plain).contains("cells"));
 }
 
 TEST(Spinmap, PngHasAValidSignatureAndSize) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -184,6 +185,103 @@ TEST(SpinMap, BadInputsGiveAMessageAndNoPoints) {
     EXPECT_EQ(map.landing, 0) << c.name;
     EXPECT_NE(map.message.find(c.field), std::string::npos) << c.name << ": " << map.message;
   }
+}
+
+// At noise scale 0 every noisy stroke is the cell's own stroke: the success is 1 where
+// the cell lands and 0 where it does not, on a position and on a pot problem.
+TEST(SpinMapSuccess, ZeroNoiseGivesTheMapsOwnOutcome) {
+  const struct {
+    const char* stem;
+    double speed, aim, spin_max;
+  } cases[] = {{"one_rail_position", kOneRailSpeed, kOneRailAim, 0.8},
+               {"pots/straight_pot_corner", 2.64, 225.0, 1.14}};
+  for (const auto& c : cases) {
+    const prob::Problem problem = shipped(c.stem);
+    // The recorded solutions lie on the rim of these discs (k_T 0.8 and -1.14).
+    SpinMapOptions options = small_grid(5, c.spin_max);
+    options.threads = 2;
+    options.success_samples = 3;
+    options.noise.scale = 0.0;
+    const SpinMap map = spin_map(problem, c.speed, c.aim, options);
+    ASSERT_TRUE(map.message.empty()) << c.stem << ": " << map.message;
+    EXPECT_TRUE(map.success_complete);
+    EXPECT_EQ(map.success_cells, static_cast<int>(map.points.size()));
+    EXPECT_GE(map.landing, 1) << c.stem;
+    EXPECT_LT(map.landing, static_cast<int>(map.points.size())) << c.stem;
+    for (const SpinMapPoint& p : map.points) {
+      ASSERT_TRUE(p.success.has_value());
+      EXPECT_EQ(*p.success, p.lands ? 1.0 : 0.0)
+          << c.stem << ": k_T " << p.topspin_k << ", k_S " << p.sidespin_k;
+    }
+  }
+}
+
+// With noise: the estimates are the planner's success probability of each cell's stroke
+// (estimate_success with the same seed), the same for any number of threads, and the
+// map itself is the map without them.
+TEST(SpinMapSuccess, EstimatesMatchEstimateSuccessAndThreadsDoNotChangeThem) {
+  const prob::Problem problem = shipped("one_rail_position");
+  const SpinMap plain = spin_map(problem, kOneRailSpeed, kOneRailAim, small_grid(7));
+  SpinMapOptions options = small_grid(7);
+  options.success_samples = 24;
+  options.seed = 7;
+  const SpinMap one = spin_map(problem, kOneRailSpeed, kOneRailAim, options);
+  options.threads = 3;
+  const SpinMap three = spin_map(problem, kOneRailSpeed, kOneRailAim, options);
+  ASSERT_EQ(one.points.size(), plain.points.size());
+  ASSERT_EQ(three.points.size(), plain.points.size());
+  EXPECT_EQ(one.success_samples, 24);
+  int between = 0;
+  for (size_t i = 0; i < plain.points.size(); ++i) {
+    const SpinMapPoint& p = one.points[i];
+    EXPECT_FALSE(plain.points[i].success.has_value());
+    EXPECT_EQ(p.lands, plain.points[i].lands);
+    EXPECT_EQ(p.final_position.x, plain.points[i].final_position.x);
+    ASSERT_TRUE(p.success.has_value());
+    EXPECT_EQ(p.success, three.points[i].success);
+    const Success s = estimate_success(problem, {kOneRailSpeed, p.aim_deg, p.topspin_k,
+                                                 p.sidespin_k},
+                                       options.noise, 24, 7, options.simulation);
+    EXPECT_EQ(*p.success, s.both.p) << "k_T " << p.topspin_k << ", k_S " << p.sidespin_k;
+    between += *p.success > 0.0 && *p.success < 1.0;
+  }
+  EXPECT_GE(between, 1) << "some cell is neither always nor never made under the noise";
+}
+
+TEST(SpinMapSuccess, PartsDeadlineProgressAndBadInputs) {
+  const prob::Problem problem = shipped("one_rail_position");
+  SpinMapOptions options = small_grid(7);
+  options.success_samples = 4;
+  options.success_first = 2;
+  options.success_count = 3;
+  std::vector<double> seen;
+  options.progress = [&](double f) { seen.push_back(f); };
+  const SpinMap part = spin_map(problem, kOneRailSpeed, kOneRailAim, options);
+  for (size_t i = 0; i < part.points.size(); ++i)
+    EXPECT_EQ(part.points[i].success.has_value(), i >= 2 && i < 5) << i;
+  EXPECT_EQ(part.success_cells, 3);
+  EXPECT_TRUE(part.success_complete);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.back(), 1.0);
+  for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]);
+
+  options.success_first = 0;
+  options.success_count = static_cast<size_t>(-1);
+  options.progress = nullptr;
+  options.deadline = std::chrono::steady_clock::now();
+  const SpinMap late = spin_map(problem, kOneRailSpeed, kOneRailAim, options);
+  EXPECT_FALSE(late.points.empty());
+  EXPECT_EQ(late.success_cells, 0);
+  EXPECT_FALSE(late.success_complete);
+
+  SpinMapOptions bad = small_grid(5);
+  bad.success_samples = -1;
+  EXPECT_NE(spin_map(problem, 1.0, 0.0, bad).message.find("success_samples"), std::string::npos);
+  bad.success_samples = 4;
+  bad.noise.scale = -1.0;
+  const SpinMap noisy = spin_map(problem, 1.0, 0.0, bad);
+  EXPECT_TRUE(noisy.points.empty());
+  EXPECT_NE(noisy.message.find("noise.scale"), std::string::npos) << noisy.message;
 }
 
 }  // namespace

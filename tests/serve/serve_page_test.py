@@ -257,6 +257,52 @@ def check_spin_map(driver, shots, reference):
           f"{driver.find_element(By.ID, 'spin-intro').text.split(',')[0]}")
 
 
+def check_forgiving(driver, shots):
+    """The "how forgiving" toggle: the success under noise arrives in parts, the progress
+    line counts them, the shaded cells follow the colour scale, and the legend says so."""
+    driver.execute_script("""
+        window.forgivingSeen = [];
+        const p = document.getElementById('forgiving-progress');
+        new MutationObserver(() => {
+          const rects = [...document.querySelectorAll('#spin-disc rect[data-kind]')];
+          window.forgivingSeen.push({text: p.textContent,
+            estimated: rects.filter(r => r.hasAttribute('data-success')).length, cells: rects.length});
+        }).observe(p, {childList: true, characterData: true, subtree: true});""")
+    driver.find_element(By.ID, "forgiving").click()
+    wait_for(driver, "the success of every spin", lambda d: d.find_element(
+        By.ID, "forgiving-progress").text.startswith("Success under noise"), timeout=90)
+    seen = driver.execute_script("return window.forgivingSeen;")
+    partial = [s for s in seen if "Estimating" in s["text"] and 0 < s["estimated"] < s["cells"]]
+    percents = [int(re.search(r"(\d+) %", s["text"]).group(1)) for s in seen if "Estimating" in s["text"]]
+    if not partial or percents != sorted(percents) or not 0 < percents[-1] < 100:
+        fail(f"no progress shown while the parts arrived: {seen[:4]}")
+    data = driver.execute_script("""
+        return [...document.querySelectorAll('#spin-disc rect[data-kind]')].map(r => ({
+          success: r.hasAttribute('data-success') ? Number(r.dataset.success) : null,
+          fill: r.getAttribute('fill')}));""")
+    if any(c["success"] is None or not 0 <= c["success"] <= 1 for c in data):
+        fail("a cell has no success under noise once the estimate is done")
+    # Viridis's green rises from 0 to 1: darker is less forgiving.
+    order = sorted(data, key=lambda c: c["success"])
+    greens = [int(c["fill"][3:5], 16) for c in order]
+    if greens != sorted(greens) or len({c["fill"] for c in data}) < 2:
+        fail(f"cells not shaded by success: {[(c['success'], c['fill']) for c in order[:: len(order) // 8]]}")
+    legend = driver.find_element(By.ID, "spin-legend").text
+    if "not estimated" not in legend or not driver.find_elements(By.ID, "success-scale"):
+        fail(f"no success legend: {legend!r}")
+    label = driver.execute_script("return document.querySelector('#success-scale').textContent")
+    if "success under noise, %" not in label:
+        fail(f"the colour bar says {label!r}")
+    best = max(c["success"] for c in data)
+    print(f"how forgiving: {len(data)} cells in {len(percents)} progress steps {percents}, "
+          f"success 0 to {100 * best:.0f} %, {len({c['fill'] for c in data})} shades")
+    driver.execute_script("document.getElementById('spin-legend').scrollIntoView({block: 'end'})")
+    driver.save_screenshot(os.path.join(shots, "serve_spin_map_success.png"))
+    driver.execute_script("window.scrollTo(0, 0)")
+    driver.find_element(By.ID, "forgiving").click()
+    wait_for(driver, "the map by where the spins stop", lambda d: not d.find_elements(By.ID, "success-scale"))
+
+
 def check_dragging(driver):
     # Drag the target 120 px right and 40 px up with the mouse: it lands where it was
     # dropped, to the millimetre, and the plan drawn for the old place is taken away.
@@ -509,6 +555,7 @@ def main():
             check_plan(driver, args.out)
             check_animation(driver)
             check_spin_map(driver, args.out, args.reference)
+            check_forgiving(driver, args.out)
             check_dragging(driver)
             check_error(driver, args.out)
             outcome = check_pot_example(driver, args.out)

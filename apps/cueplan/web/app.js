@@ -644,6 +644,7 @@ async function requestMap() {
 
 function showMap(map) {
   state.map = map;
+  $("forgiving-field").hidden = false;
   if (map.stroke_source === "planner") setStroke(map.planner.shot);
   // Ring the planned spin when the plan's speed and aim are the map's.
   let planned = map.stroke_source === "planner" ? map.planner.shot : null;
@@ -661,6 +662,57 @@ function showMap(map) {
   disc.draw(map, { planned, cushions: allowedCushions(state.scene.limits) });
   $("spin-disc").classList.remove("stale");
   $("spin-cell").textContent = "";
+  if ($("forgiving").checked) requestForgiveness();
+}
+
+// How forgiving each spin is: the server estimates the success under noise of a part of
+// the map's cells per request (at most max_success_strokes noisy strokes), and the page
+// asks for the parts one after another, shading each as it arrives.
+const SUCCESS_STROKES_PER_REQUEST = 40000;
+async function requestForgiveness() {
+  state.successAbort?.abort();
+  const map = state.map;
+  const on = $("forgiving").checked;
+  disc.setSuccess(on);
+  if (!on || !map) {
+    $("forgiving-progress").textContent = "";
+    return;
+  }
+  const samples = Number($("forgiving-samples").value);
+  if (!Number.isInteger(samples) || samples < 1 || samples > 200) {
+    $("forgiving-progress").textContent = "Noisy strokes a spin must be a whole number from 1 to 200.";
+    return;
+  }
+  for (const c of map.cells) delete c.success;
+  disc.setSuccess(true);
+  const abort = new AbortController();
+  state.successAbort = abort;
+  const total = map.cells.length;
+  // About ten parts, so that the progress moves, each within the server's bound.
+  const part = Math.max(1, Math.min(Math.ceil(total / 10), Math.floor(SUCCESS_STROKES_PER_REQUEST / samples)));
+  const say = (done) => {
+    $("forgiving-progress").textContent = done < total
+      ? `Estimating how forgiving each spin is: ${Math.round((100 * done) / total)} % ` +
+        `(${done} of ${total} spins, ${samples} noisy strokes each)...`
+      : `Success under noise: ${samples} noisy strokes for each of the ${total} spins ` +
+        `(noise ${plannerOptions().noise ?? 1} times a club player's scatter).`;
+  };
+  say(0);
+  for (let from = 0; from < total; from += part) {
+    const body = { problem: state.problem, grid: map.grid, speed: map.speed, aim_deg: map.aim_deg,
+      options: plannerOptions(), success: true, samples, success_from: from, success_count: part };
+    let answer;
+    try {
+      answer = await call("/api/spinmap", body, { signal: abort.signal });
+    } catch (e) {
+      if (!e.aborted) $("forgiving-progress").textContent = `The estimate stopped: ${e.message ?? e}`;
+      return;
+    }
+    if (state.map !== map || abort.signal.aborted) return;
+    answer.cells.forEach((c, i) => { if ("success" in c) map.cells[i].success = c.success; });
+    disc.setSuccess(true);
+    say(Math.min(total, from + part));
+  }
 }
 
 let mapTimer = null;
@@ -677,8 +729,9 @@ function cellText(cell) {
     : `stops ${fixed(1000 * cell.miss_distance, 1)} mm from the target after ${cushionWord(cell.cushion_hits)}` +
       (cell.kind === "at_rest_other_cushions" ? " (a cushion count the problem does not allow)" : "") +
       (cell.lands ? ": lands" : "");
+  const success = "success" in cell ? ` Under noise it succeeds ${Math.round(100 * cell.success)} % of the time.` : "";
   return `Tip ${tipWords(cell.tip_right, cell.tip_up)} (k_T = ${fixed(cell.topspin_k, 3)}, ` +
-    `k_S = ${fixed(cell.sidespin_k, 3)}) ${where}.`;
+    `k_S = ${fixed(cell.sidespin_k, 3)}) ${where}.${success}`;
 }
 
 const cellStroke = (cell) => ({ speed: state.map.speed, aim_deg: state.map.aim_deg,
@@ -752,6 +805,8 @@ function bindControls() {
   $("plan").onclick = plan;
   $("play").onclick = play;
   $("spinmap").onclick = requestMap;
+$("forgiving").onchange = requestForgiveness;
+$("forgiving-samples").onchange = () => $("forgiving").checked && requestForgiveness();
   $("speed-range").oninput = (e) => {
     setSpeed(Number(e.target.value));
     state.strokeKnown = true;

@@ -9,6 +9,7 @@ import { cellColour, HATCH, missScale, OUTLINE, viridis } from "./colours.js";
 const SVG = "http://www.w3.org/2000/svg";
 const SPIN_PER_TIP = 2.5;  // k = 2.5 d / R
 const PLANNED = "#e6007e";
+const PENDING = "#e4e4e4";  // a spin whose success under noise is not estimated yet
 
 function el(name, attributes = {}, parent = null) {
   const e = document.createElementNS(SVG, name);
@@ -39,6 +40,7 @@ export class SpinDisc {
     this.radius = map.spin_max / SPIN_PER_TIP;
     this.half = (map.grid - 1) / 2;
     this.cellSize = (2 * this.radius) / (map.grid - 1);
+    this.showSuccess = map.cells.some((c) => "success" in c) || this.successMode === true;
     this.byGrid = new Map();
     map.cells.forEach((c, i) => this.byGrid.set(`${this.rowOf(c)},${this.colOf(c)}`, i));
 
@@ -56,10 +58,10 @@ export class SpinDisc {
     this.world = world;
     el("circle", { cx: 0, cy: 0, r: r + h / 2, fill: "#fafafa", stroke: "#bbb", "stroke-width": h / 10 }, world);
     const cells = el("g", { "shape-rendering": "crispEdges" }, world);
-    for (const c of map.cells)
+    this.rects = map.cells.map((c) =>
       el("rect", { x: c.tip_right - h / 2, y: c.tip_up - h / 2, width: h, height: h,
-        fill: c.kind === "pocketed" ? "url(#hatch)" : cellColour(c, this.scale), "data-kind": c.kind,
-        "data-miss": c.miss_distance ?? "" }, cells);
+        fill: this.fillOf(c), "data-kind": c.kind,
+        "data-miss": c.miss_distance ?? "" }, cells));
     const outlines = el("g", { fill: "none", stroke: OUTLINE, "stroke-width": h / 7 }, world);
     for (const c of map.cells)
       if (c.lands) el("rect", { x: c.tip_right - h / 2, y: c.tip_up - h / 2, width: h, height: h }, outlines);
@@ -87,8 +89,32 @@ export class SpinDisc {
       "tip right of centre (R)";
     el("text", { x: -r - pad - 0.2 * r, y: 0, "text-anchor": "middle",
       transform: `rotate(-90 ${-r - pad - 0.2 * r} 0)` }, text).textContent = "tip above centre (R)";
+    this.planned = planned;
+    this.cushions = cushions;
     this.drawLegend(map, planned, cushions);
     this.cursor = null;
+  }
+
+  // A cell's fill: by where it stops, or, showing how forgiving each spin is, by its
+  // success under noise (a light grey until it is estimated).
+  fillOf(c) {
+    if (this.showSuccess) return "success" in c ? viridis(c.success) : PENDING;
+    return c.kind === "pocketed" ? "url(#hatch)" : cellColour(c, this.scale);
+  }
+
+  // Shows the success under noise (on) or where the spins stop (off); `map.cells` may
+  // gain `success` a part at a time: call again to shade what has arrived.
+  setSuccess(on) {
+    this.successMode = on;
+    if (!this.map) return;
+    const was = this.showSuccess;
+    this.showSuccess = on;
+    this.map.cells.forEach((c, i) => {
+      this.rects[i].setAttribute("fill", this.fillOf(c));
+      if ("success" in c) this.rects[i].setAttribute("data-success", c.success);
+      else this.rects[i].removeAttribute("data-success");
+    });
+    if (was !== on) this.drawLegend(this.map, this.planned, this.cushions);
   }
 
   rowOf(c) { return Math.round((c.topspin_k / this.map.spin_max) * this.half + this.half); }
@@ -98,6 +124,7 @@ export class SpinDisc {
   drawLegend(map, planned, cushions) {
     const scale = this.scale;
     this.legend.replaceChildren();
+    if (this.showSuccess) return this.drawSuccessLegend(map, planned);
     const bar = el("svg", { viewBox: "0 0 300 44", role: "img",
       "aria-label": `colour scale: miss distance from ${scale.nearMm} mm to ${scale.farMm} mm, log scale` }, null);
     const grad = el("linearGradient", { id: "miss-gradient" }, el("defs", {}, bar));
@@ -122,6 +149,38 @@ export class SpinDisc {
       o.hit_obstacle > 0 && ["obstacle", `stops against an obstacle ball (${o.hit_obstacle})`],
       o.no_pot > 0 && ["no-pot", `no aim pots the ${map.pot_ball ?? "object ball"} with this spin (${o.no_pot})`],
       o.no_outcome > 0 && ["none", `no outcome: the simulation gave no result (${o.no_outcome})`],
+      planned && ["planned", "the planner's spin"],
+    ].filter(Boolean);
+    for (const [kind, words] of rows) {
+      const row = document.createElement("div");
+      row.className = "row";
+      const box = document.createElement("span");
+      box.className = `box ${kind}`;
+      const label = document.createElement("span");
+      label.textContent = words;
+      row.append(box, label);
+      this.legend.appendChild(row);
+    }
+  }
+
+  // The colour bar of the success under noise (0 % dark to 100 % bright).
+  drawSuccessLegend(map, planned) {
+    const bar = el("svg", { viewBox: "0 0 300 44", role: "img", id: "success-scale",
+      "aria-label": "colour scale: success under noise, 0 to 100 %" }, null);
+    const grad = el("linearGradient", { id: "success-gradient" }, el("defs", {}, bar));
+    for (let i = 0; i <= 20; ++i) el("stop", { offset: i / 20, "stop-color": viridis(i / 20) }, grad);
+    el("rect", { x: 10, y: 4, width: 280, height: 12, fill: "url(#success-gradient)", stroke: "#888", "stroke-width": 0.5 }, bar);
+    for (let t = 0; t <= 100; t += 25) {
+      const x = 10 + 2.8 * t;
+      el("line", { x1: x, y1: 16, x2: x, y2: 20, stroke: "#444" }, bar);
+      el("text", { x, y: 30, "font-size": 10, "text-anchor": "middle", fill: "#333" }, bar).textContent = `${t}`;
+    }
+    el("text", { x: 150, y: 42, "font-size": 10, "text-anchor": "middle", fill: "#555" }, bar).textContent =
+      "success under noise, %";
+    this.legend.appendChild(bar);
+    const rows = [
+      ["land", `outlined: lands when struck exactly (${map.landing} spins)`],
+      ["pending", "not estimated yet"],
       planned && ["planned", "the planner's spin"],
     ].filter(Boolean);
     for (const [kind, words] of rows) {

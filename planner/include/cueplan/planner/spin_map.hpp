@@ -10,12 +10,15 @@
 // A pure function of its arguments, deterministic for any number of threads.
 #pragma once
 
+#include <chrono>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
 
 namespace cueplan::planner {
@@ -27,6 +30,22 @@ struct SpinMapOptions {
   physics::SimulationOptions simulation;
   // Called now and then with the fraction done (0..1), from the calling thread.
   std::function<void(double)> progress;
+  // "How forgiving": when above 0, each cell's stroke (its speed, aim and spin) is also
+  // played `success_samples` times with the execution noise `noise`, and the cell's
+  // success is the fraction that solve the problem (check_outcome). Every cell uses the
+  // same seeded draws (common random numbers): the map is deterministic for any number
+  // of threads. At noise scale 0 every draw is the cell's own stroke, so success is 1
+  // exactly where the cell lands and 0 elsewhere.
+  int success_samples = 0;
+  NoiseModel noise;
+  uint64_t seed = 1;
+  // Only the cells [success_first, success_first + success_count) get a success (the
+  // map is computed whole): a caller can ask for the estimates in parts.
+  size_t success_first = 0;
+  size_t success_count = static_cast<size_t>(-1);
+  // When it passes, no more cells are estimated (those not finished have no success)
+  // and the map says it is incomplete.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   // Empty when usable; otherwise the first broken rule, fields named as these members.
   physics::Validation validate() const;
 };
@@ -41,6 +60,9 @@ struct SpinMapPoint {
   bool lands = false;                      // solves the problem (problems::check_outcome)
   double aim_deg = 0.0;                    // the aim struck: the map's, or a pot's solved aim
   bool pots = true;                        // a pot problem: some aim pots with this spin
+  // Asked for (SpinMapOptions::success_samples): the fraction of the noisy strokes
+  // that solve the problem, 0..1; std::nullopt when not estimated.
+  std::optional<double> success;
 };
 
 struct SpinMap {
@@ -51,6 +73,9 @@ struct SpinMap {
   std::vector<SpinMapPoint> points;  // the grid points inside the disc, row by row
   int landing = 0;                   // how many land
   int not_potting = 0;               // a pot problem: spins for which no aim pots
+  int success_samples = 0;           // noisy strokes per estimated cell (0: none asked)
+  int success_cells = 0;             // cells given a success
+  bool success_complete = true;      // false when the deadline stopped the estimates
   std::string message;               // set when the inputs were invalid (points empty)
   // The broken rule when the inputs were invalid: SpinMapOptions' members, {"speed"},
   // {"aim_deg"}, or the problem's (Problem's members, as problems::validate names them).
