@@ -126,6 +126,7 @@ ordered_json physics_json(const phys::Scene& s) {
           {"mu_cushion", s.ball_and_cushion.mu_cushion},
           {"restitution", s.ball_and_cushion.restitution},
           {"cushion_height", s.ball_and_cushion.cushion_height},
+          {"cushion_model", phys::to_string(s.ball_and_cushion.model)},
           {"gravity", s.cloth.gravity},
           {"mu_ball", s.ball_contact.mu_ball},
           {"ball_restitution", s.ball_contact.restitution},
