@@ -73,13 +73,28 @@ phys::Vec2 position_at(const phys::BallOutcome& ball, double ts, size_t* seg) {
 
 double window(const ShotData& d, const FitOptions& o) { return o.max_offset_s + d.strike_extra; }
 
+// The squirt of a stroke with this side on the shot's table (deg, counter-clockwise).
+double squirt_deg(const ShotData& d, double sidespin_k) {
+  const phys::Scene& s = d.scene;
+  return phys::squirt_angle_deg(s.cue, s.ball_and_cushion.mass, s.radius(), sidespin_k);
+}
+
+// The search's coordinates: u[1] is the direction the cue ball leaves in (what the first
+// samples pin), and the cue's aim is that less the squirt of the stroke's side, so that
+// side and aim do not trade off through the squirt.
 phys::Shot stroke_of(const double* u, const phys::Shot& centre, const ShotData& d,
                      const FitOptions& o, double* offset) {
   phys::Shot s;
   s.speed = centre.speed * (1.0 + o.speed_span * (2.0 * u[0] - 1.0));
-  s.aim_deg = centre.aim_deg + o.aim_span_deg * (2.0 * u[1] - 1.0);
   s.topspin_k = o.spin_max * (2.0 * u[2] - 1.0);
   s.sidespin_k = o.spin_max * (2.0 * u[3] - 1.0);
+  // A cue gives no more spin than the miscue limit: the box's corners map onto its circle.
+  const double spin = std::hypot(s.topspin_k, s.sidespin_k);
+  if (spin > phys::kMiscueSpin) {
+    s.topspin_k *= phys::kMiscueSpin / spin;
+    s.sidespin_k *= phys::kMiscueSpin / spin;
+  }
+  s.aim_deg = centre.aim_deg + o.aim_span_deg * (2.0 * u[1] - 1.0) - squirt_deg(d, s.sidespin_k);
   *offset = d.strike_lo + window(d, o) * u[4];
   // A stroke elevation (Shot::elevation_deg, when strokes have it) would be u[5].
   return s;
@@ -89,7 +104,8 @@ std::vector<double> unit_of(const StrokeFit& f, const phys::Shot& centre, const 
                             const FitOptions& o) {
   auto clamp01 = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.5; };
   return {clamp01(0.5 * (f.shot.speed / centre.speed - 1.0) / o.speed_span + 0.5),
-          clamp01(0.5 * (f.shot.aim_deg - centre.aim_deg) / o.aim_span_deg + 0.5),
+          clamp01(0.5 * (f.shot.aim_deg + squirt_deg(d, f.shot.sidespin_k) - centre.aim_deg) /
+                      o.aim_span_deg + 0.5),
           clamp01(0.5 * f.shot.topspin_k / o.spin_max + 0.5),
           clamp01(0.5 * f.shot.sidespin_k / o.spin_max + 0.5),
           clamp01(window(d, o) > 0 ? (f.offset_s - d.strike_lo) / window(d, o) : 0.0)};

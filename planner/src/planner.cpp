@@ -65,6 +65,7 @@ constexpr int kMinPolishEvaluations = 100;  // a new polish needs this much budg
 constexpr int kMinContinueEvaluations = 40;  // and a continued one this much
 constexpr int kVerifyEvaluations = 200;
 constexpr int kSimplifyEvaluations = 150;  // polish of a side variant, held side
+constexpr int kMinPolish = 10;             // fewer left than this: a variant is not polished
 constexpr double kSearchTimeShare = 0.75;  // of max_time_s: the global stage and the polish
 constexpr double kRefineTimeShare = 0.9;   // and the exact verification and side variants
 constexpr size_t kOpeningRound = 10;  // noise draws every candidate is sampled on first,
@@ -586,12 +587,21 @@ class Planning {
     std::vector<Final> out(parents.size());
     if (parents.empty() || refine_seconds_left() <= 0.0) return {};
     std::vector<int> simulations(parents.size(), 0);
+    // A variant that misses is polished within what is left of the search's budget, less
+    // the simulations that describe the variants.
+    const int left = options_.max_evaluations - result_.evaluations -
+                     2 * static_cast<int>(parents.size());
+    const int polish_budget =
+        std::min(kSimplifyEvaluations, std::max(0, left) / static_cast<int>(parents.size()));
     physics::parallel_for(
         parents.size(), physics::thread_count(options_.threads, static_cast<int>(parents.size())),
         [&](size_t j, unsigned) {
           physics::Shot shot = finals_[parents[j]].shot.shot;
           const double parent_squirt = detail::squirt_of(task.problem, shot);
           shot.sidespin_k = side_factor == 0.0 ? 0.0 : side_factor * shot.sidespin_k;
+          // The cue ball leaves along the parent's line: the aim allows for the change of
+          // squirt (a pot's aim is solved again below).
+          shot.aim_deg += parent_squirt - detail::squirt_of(task.problem, shot);
           if (task.pot_aim) {
             // Side changes the throw: the aim is solved again for the new spin.
             const double lateral =
@@ -604,8 +614,8 @@ class Planning {
             shot = aimed.shot;
           }
           Final f = describe_shot(task, shot, &simulations[j]);
-          if (!f.shot.solves && refine_seconds_left() > 0.0)
-            f = polished_and_described(task, shot, kSimplifyEvaluations,
+          if (!f.shot.solves && refine_seconds_left() > 0.0 && polish_budget >= kMinPolish)
+            f = polished_and_described(task, shot, polish_budget,
                                        kSimplifyStream + stream_offset + j, shot.sidespin_k,
                                        &simulations[j]);
           f.parent = finals_[parents[j]].id;

@@ -354,12 +354,13 @@ TEST(Spinmap, SvgHasOneCellPerSpinAndOutlinesTheLandingOnes) {
 
 // --success: every cell gets the fraction of its noisy strokes that solve the problem,
 // and a cell's value is what `simulate --samples` estimates for that cell's stroke with
-// the same seed (the same noise draws).
+// the same seed (the same noise draws); half a club player's scatter, so that some spins
+// succeed sometimes.
 TEST(Spinmap, SuccessShadesEveryCellAndAgreesWithSimulate) {
   const fs::path svg = scratch() / "success.svg";
   const ProcessResult run =
       cueplan("spinmap '" + problem_path("one_rail_position") + "' " + kOneRailStroke +
-              " --grid 7 --success --samples 12 --seed 11 --json --out '" + svg.string() + "'");
+              " --grid 7 --success --samples 12 --seed 11 --noise 0.5 --json --out '" + svg.string() + "'");
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   // The picture's text is drawn as glyphs; its description says what the cells show.
   EXPECT_NE(read_text(svg).find("success under noise (12 noisy strokes)"), std::string::npos);
@@ -380,7 +381,7 @@ TEST(Spinmap, SuccessShadesEveryCellAndAgreesWithSimulate) {
   const ProcessResult sim = cueplan(
       "simulate '" + problem_path("one_rail_position") + "' --method exact --speed 1.002 --aim " +
           fmt_exact((*best)["aim_deg"]) + " --topspin-k " + fmt_exact((*best)["topspin_k"]) +
-          " --sidespin-k " + fmt_exact((*best)["sidespin_k"]) + " --samples 12 --seed 11 --json",
+          " --sidespin-k " + fmt_exact((*best)["sidespin_k"]) + " --samples 12 --seed 11 --noise 0.5 --json",
       "sim");
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   EXPECT_EQ(parsed(sim).at("success").at("both").at("p").get<double>(),

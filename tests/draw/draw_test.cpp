@@ -534,7 +534,11 @@ TEST(Table, ObjectBallsStandInTheirColoursAndMoveAlongTheirPaths) {
   EXPECT_FALSE(ball_colour("lilac2").has_value());
   // The plant: red sends blue into the top-right pocket; each ball's path is drawn and
   // the blue is marked pocketed.
-  const phys::ShotResult r = phys::simulate(problem.scene, problem.cue_ball, {2.86, 23.88, -1.2, 0.2});
+  // (The cue aimed off by the squirt of its side, so that the cue ball leaves at 23.88 deg.)
+  const double squirt = phys::squirt_angle_deg(problem.scene.cue, problem.scene.ball_and_cushion.mass,
+                                               problem.scene.radius(), 0.2);
+  const phys::ShotResult r =
+      phys::simulate(problem.scene, problem.cue_ball, {2.86, 23.88 - squirt, -1.2, 0.2});
   ASSERT_TRUE(r.balls.at(2).pocketed);
   TableScene moved = t;
   moved.balls[0].paths.push_back({r.path, r.events, false});

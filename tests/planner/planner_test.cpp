@@ -300,9 +300,13 @@ TEST(RankingTest, SideThatChangesNothingIsNotRecommended) {
     physics::Shot with_side = s.shot;
     with_side.sidespin_k = std::sqrt(p.limits.spin_max * p.limits.spin_max -
                                      s.shot.topspin_k * s.shot.topspin_k);
-    // Aimed off by its squirt, so that the cue ball leaves along the same line.
-    with_side.aim_deg -= physics::squirt_angle_deg(p.scene.cue, p.scene.ball_and_cushion.mass,
-                                                   p.scene.radius(), with_side.sidespin_k);
+    // Aimed off by the difference of the two strokes' squirts, so that the cue ball
+    // leaves along the same line.
+    const auto squirt = [&](double k) {
+      return physics::squirt_angle_deg(p.scene.cue, p.scene.ball_and_cushion.mass,
+                                       p.scene.radius(), k);
+    };
+    with_side.aim_deg += squirt(s.shot.sidespin_k) - squirt(with_side.sidespin_k);
     const physics::ShotResult a = physics::simulate(p.scene, p.cue_ball, s.shot);
     const physics::ShotResult b = physics::simulate(p.scene, p.cue_ball, with_side);
     // A stroke that meets a pocket's jaw is a cushion contact there, where side acts:

@@ -446,7 +446,7 @@ TEST(ServeBadInput, BadValuesNameTheirField) {
   p["table"] = {{"length", -1}};
   expect_error(solve(p), 400, "problem.table.length", "must be positive");
   p = kSmallProblem;
-  p["cue_ball"] = {0.01, 0.01};
+  p["cue_ball"] = {1.0, 0.01};  // across the bottom cushion, away from the pockets
   expect_error(solve(p), 400, "problem.cue_ball", "off the table");
   p = kSmallProblem;
   p["limits"] = {{"speed", {3, 1}}};
