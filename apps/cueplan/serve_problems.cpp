@@ -100,18 +100,11 @@ const char* table_kind(const phys::Scene& scene) {
 }
 
 // The pockets' names: the standard six by kPocketNames, any others by number.
+// The pockets' names in problem files (the problems library's, jawed or not).
 std::vector<std::string> pocket_names(const phys::Scene& scene) {
   std::vector<std::string> names;
-  const std::vector<phys::Pocket> standard =
-      phys::standard_pockets(scene.length, scene.width, prob::kDefaultPocketRadius);
-  const bool is_standard =
-      scene.pockets.size() == standard.size() &&
-      std::equal(scene.pockets.begin(), scene.pockets.end(), standard.begin(),
-                 [](const phys::Pocket& a, const phys::Pocket& b) {
-                   return std::hypot(a.centre.x - b.centre.x, a.centre.y - b.centre.y) < 1e-9;
-                 });
   for (size_t i = 0; i < scene.pockets.size(); ++i)
-    names.push_back(is_standard ? prob::kPocketNames[i] : "pocket " + std::to_string(i));
+    names.push_back(prob::pocket_name(scene, static_cast<int>(i)));
   return names;
 }
 

@@ -312,7 +312,13 @@ function plannerOptions() {
 // ---------------------------------------------------------------------------
 // Simulating one stroke (the plan's, your own, a spin map cell's)
 
-async function simulate(stroke, method, { signal, onWait } = {}) {
+// The stroke fields /api/simulate takes: a plan's shot also reports what the stroke does
+// (its squirt), which is not sent back.
+const STROKE_FIELDS = ["speed", "aim_deg", "topspin_k", "sidespin_k", "elevation_deg"];
+
+async function simulate(planned, method, { signal, onWait } = {}) {
+  const stroke = Object.fromEntries(
+    STROKE_FIELDS.filter((k) => planned[k] !== undefined).map((k) => [k, planned[k]]));
   const body = { problem: state.problem, stroke, options: { method } };
   const key = JSON.stringify([state.version, stroke, method]);
   if (state.shots.has(key)) return state.shots.get(key);
