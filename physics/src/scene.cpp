@@ -7,6 +7,7 @@
 #include <string>
 
 #include "ball_motion.hpp"
+#include "scene_geometry.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/physics/shot.hpp"
 
@@ -392,7 +393,11 @@ Validation Shot::validate() const {
 }
 
 CompiledScene::CompiledScene(Scene scene)
-    : scene_(std::move(scene)), error_(scene_.validate()), ball_ball_(scene_.ball_ball_params()) {}
+    : scene_(std::move(scene)),
+      error_(scene_.validate()),
+      ball_ball_(scene_.ball_ball_params()),
+      geometry_(std::make_shared<const detail::SceneGeometry>(
+          error_ ? detail::SceneGeometry{} : detail::scene_geometry(scene_))) {}
 
 const char* to_string(EventType type) {
   switch (type) {

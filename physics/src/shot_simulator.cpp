@@ -12,11 +12,18 @@
 #include "ball_motion.hpp"
 #include "cueplan/physics/shot.hpp"
 #include "impact_methods.hpp"
+#include "scene_geometry.hpp"
 
 namespace cueplan::physics {
 namespace {
 
+using detail::along_cushion;
 using detail::Ball;
+using detail::CushionGaps;
+using detail::CushionLine;
+using detail::Gap;
+using detail::JawPart;
+using detail::Jaws;
 using detail::ClothModel;
 using detail::dot;
 using detail::kNever;
@@ -49,119 +56,12 @@ int rank(EventType type) {
   }
 }
 
-// The four cushions: outward normal n (from the ball into the cushion) and the
-// value of n . p at which the ball's centre touches the cushion.
-struct CushionLine {
-  Vec2 normal;
-  double contact;  // n . p at contact
-};
-
-// A straight cushion nose stops where a jawed pocket's point begins: the stretch of the
-// cushion's line between the pockets' nose tangents (along x for cushions 0 and 2, y for
-// 1 and 3) that lies in a pocket's mouth is open.
-struct Gap {
-  double lo, hi;
-};
-using CushionGaps = std::array<std::vector<Gap>, 4>;
-
-double along_cushion(int cushion, Vec2 p) { return cushion % 2 == 0 ? p.x : p.y; }
-
-CushionGaps cushion_gaps(const Scene& s) {
-  CushionGaps gaps;
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  for (const Pocket& k : s.pockets) {
-    if (!k.jaws) continue;
-    const PocketJaws& j = *k.jaws;
-    if (j.cushion[0] == j.cushion[1]) {
-      const double a = along_cushion(j.cushion[0], j.nose_tangent[0]);
-      const double b = along_cushion(j.cushion[1], j.nose_tangent[1]);
-      gaps[static_cast<size_t>(j.cushion[0])].push_back({std::min(a, b), std::max(a, b)});
-      continue;
-    }
-    for (int side = 0; side < 2; ++side) {
-      const int c = j.cushion[side];
-      const double t = along_cushion(c, j.nose_tangent[side]);
-      // The gap runs from the tangent toward the corner the cushion ends at.
-      const double toward = along_cushion(c, j.mouth_centre - j.nose_tangent[side]);
-      gaps[static_cast<size_t>(c)].push_back(toward < 0.0 ? Gap{-inf, t} : Gap{t, inf});
-    }
-  }
-  return gaps;
-}
-
-// A jawed pocket's parts as the ball's centre meets them: each facing a line (normal n
-// from the ball into it, contact where n . p = contact) over [0, length] along `dir`
-// from `start`; each point a circle of radius point_radius + R cos(theta). `box` bounds
-// all of them, for a cheap first test.
-struct JawPart {
-  Vec2 normal, start, dir;
-  double contact = 0.0, length = 0.0;
-};
-struct Jaws {
-  int pocket = -1;
-  JawPart facing[2];
-  Vec2 point[2];
-  double point_reach = 0.0;  // point_radius + R cos(theta)
-  detail::Box box{};
-  detail::Box part_box[4]{};  // each part's contact locus, by part number
-};
-
 // Event codes of jaw contacts (NextEvent::which, Next::other): after the four cushions,
 // four parts per pocket, so that a cushion ranks before a jaw at the same instant.
 constexpr int kFirstJaw = 4;
 int jaw_code(int pocket, int part) { return kFirstJaw + 4 * pocket + part; }
 int jaw_pocket(int code) { return (code - kFirstJaw) / 4; }
 int jaw_part(int code) { return (code - kFirstJaw) % 4; }
-
-std::vector<Jaws> jaws_of(const Scene& s) {
-  std::vector<Jaws> out;
-  const double off = s.contact_offset();
-  for (size_t i = 0; i < s.pockets.size(); ++i) {
-    if (!s.pockets[i].jaws) continue;
-    const PocketJaws& j = *s.pockets[i].jaws;
-    Jaws w;
-    w.pocket = static_cast<int>(i);
-    w.point_reach = j.shape.point_radius + off;
-    double xlo = kNever, xhi = -kNever, ylo = kNever, yhi = -kNever;
-    const auto grow = [&](Vec2 p, double r) {
-      xlo = std::min(xlo, p.x - r);
-      xhi = std::max(xhi, p.x + r);
-      ylo = std::min(ylo, p.y - r);
-      yhi = std::max(yhi, p.y + r);
-    };
-    const auto box_around = [](Vec2 a, Vec2 b, double r) {
-      return detail::Box{std::min(a.x, b.x) - r, std::max(a.x, b.x) + r, std::min(a.y, b.y) - r,
-                         std::max(a.y, b.y) + r};
-    };
-    for (int side = 0; side < 2; ++side) {
-      JawPart& f = w.facing[side];
-      f.start = j.facing_start[side];
-      f.dir = j.facing_dir[side];
-      f.length = j.facing_length[side];
-      // The rubber lies to the facing's left on the left side, to its right on the right.
-      f.normal = side == 0 ? Vec2{-f.dir.y, f.dir.x} : Vec2{f.dir.y, -f.dir.x};
-      f.contact = dot(f.normal, f.start) - off;
-      w.point[side] = j.point_centre[side];
-      grow(w.point[side], w.point_reach);
-      grow(f.start, off);
-      grow(f.start + f.length * f.dir, off);
-      // Parts 0 left point, 1 left facing, 2 right facing, 3 right point.
-      w.part_box[side == 0 ? 0 : 3] = box_around(w.point[side], w.point[side], w.point_reach);
-      w.part_box[side == 0 ? 1 : 2] = box_around(f.start, f.start + f.length * f.dir, off);
-    }
-    w.box = {xlo, xhi, ylo, yhi};
-    out.push_back(w);
-  }
-  return out;
-}
-
-std::array<CushionLine, 4> cushion_lines(const Scene& s) {
-  const double off = s.contact_offset();
-  return {{{{0.0, -1.0}, -off},
-           {{1.0, 0.0}, s.length - off},
-           {{0.0, 1.0}, s.width - off},
-           {{-1.0, 0.0}, -off}}};
-}
 
 // The stroke's own inputs, checked on every call (the scene was checked when compiled).
 Validation check_stroke(const Scene& scene, Vec2 cue_ball, const Shot& shot,
@@ -246,9 +146,9 @@ class ShotRun {
       : scene_(compiled.scene()),
         options_(options),
         cloth_(scene_),
-        lines_(cushion_lines(scene_)),
-        gaps_(cushion_gaps(scene_)),
-        jaws_(jaws_of(scene_)),
+        lines_(compiled.geometry().lines),
+        gaps_(compiled.geometry().gaps),
+        jaws_(compiled.geometry().jaws),
         ball_ball_(compiled.ball_ball_params()),
         result_(result) {
     // The cheapest impact method that meets the accuracy asked for: the table where its
@@ -1010,9 +910,9 @@ class ShotRun {
   const Scene& scene_;
   const SimulationOptions& options_;
   const ClothModel cloth_;
-  const std::array<CushionLine, 4> lines_;
-  const CushionGaps gaps_;       // open stretches of the cushion lines (jawed pockets' mouths)
-  const std::vector<Jaws> jaws_;  // the jawed pockets' points and facings
+  const std::array<CushionLine, 4>& lines_;
+  const CushionGaps& gaps_;       // open stretches of the cushion lines (jawed pockets' mouths)
+  const std::vector<Jaws>& jaws_;  // the jawed pockets' points and facings
   const BallBallParams& ball_ball_;
   ImpactOptions impact_;
   Validation impact_error_;  // what is wrong with the parameters or impact_, if anything
@@ -1034,6 +934,90 @@ ShotResult invalid_shot(ValidationError error) {
 }
 
 }  // namespace
+
+namespace detail {
+namespace {
+
+CushionGaps cushion_gaps(const Scene& s) {
+  CushionGaps gaps;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (const Pocket& k : s.pockets) {
+    if (!k.jaws) continue;
+    const PocketJaws& j = *k.jaws;
+    if (j.cushion[0] == j.cushion[1]) {
+      const double a = along_cushion(j.cushion[0], j.nose_tangent[0]);
+      const double b = along_cushion(j.cushion[1], j.nose_tangent[1]);
+      gaps[static_cast<size_t>(j.cushion[0])].push_back({std::min(a, b), std::max(a, b)});
+      continue;
+    }
+    for (int side = 0; side < 2; ++side) {
+      const int c = j.cushion[side];
+      const double t = along_cushion(c, j.nose_tangent[side]);
+      // The gap runs from the tangent toward the corner the cushion ends at.
+      const double toward = along_cushion(c, j.mouth_centre - j.nose_tangent[side]);
+      gaps[static_cast<size_t>(c)].push_back(toward < 0.0 ? Gap{-inf, t} : Gap{t, inf});
+    }
+  }
+  return gaps;
+}
+
+std::vector<Jaws> jaws_of(const Scene& s) {
+  std::vector<Jaws> out;
+  const double off = s.contact_offset();
+  for (size_t i = 0; i < s.pockets.size(); ++i) {
+    if (!s.pockets[i].jaws) continue;
+    const PocketJaws& j = *s.pockets[i].jaws;
+    Jaws w;
+    w.pocket = static_cast<int>(i);
+    w.point_reach = j.shape.point_radius + off;
+    double xlo = kNever, xhi = -kNever, ylo = kNever, yhi = -kNever;
+    const auto grow = [&](Vec2 p, double r) {
+      xlo = std::min(xlo, p.x - r);
+      xhi = std::max(xhi, p.x + r);
+      ylo = std::min(ylo, p.y - r);
+      yhi = std::max(yhi, p.y + r);
+    };
+    const auto box_around = [](Vec2 a, Vec2 b, double r) {
+      return detail::Box{std::min(a.x, b.x) - r, std::max(a.x, b.x) + r, std::min(a.y, b.y) - r,
+                         std::max(a.y, b.y) + r};
+    };
+    for (int side = 0; side < 2; ++side) {
+      JawPart& f = w.facing[side];
+      f.start = j.facing_start[side];
+      f.dir = j.facing_dir[side];
+      f.length = j.facing_length[side];
+      // The rubber lies to the facing's left on the left side, to its right on the right.
+      f.normal = side == 0 ? Vec2{-f.dir.y, f.dir.x} : Vec2{f.dir.y, -f.dir.x};
+      f.contact = dot(f.normal, f.start) - off;
+      w.point[side] = j.point_centre[side];
+      grow(w.point[side], w.point_reach);
+      grow(f.start, off);
+      grow(f.start + f.length * f.dir, off);
+      // Parts 0 left point, 1 left facing, 2 right facing, 3 right point.
+      w.part_box[side == 0 ? 0 : 3] = box_around(w.point[side], w.point[side], w.point_reach);
+      w.part_box[side == 0 ? 1 : 2] = box_around(f.start, f.start + f.length * f.dir, off);
+    }
+    w.box = {xlo, xhi, ylo, yhi};
+    out.push_back(w);
+  }
+  return out;
+}
+
+std::array<CushionLine, 4> cushion_lines(const Scene& s) {
+  const double off = s.contact_offset();
+  return {{{{0.0, -1.0}, -off},
+           {{1.0, 0.0}, s.length - off},
+           {{0.0, 1.0}, s.width - off},
+           {{-1.0, 0.0}, -off}}};
+}
+
+}  // namespace
+
+SceneGeometry scene_geometry(const Scene& scene) {
+  return {cushion_lines(scene), cushion_gaps(scene), jaws_of(scene)};
+}
+
+}  // namespace detail
 
 ShotResult simulate(const CompiledScene& compiled, Vec2 cue_ball, const Shot& shot,
                     const SimulationOptions& options) {

@@ -18,6 +18,7 @@
 // Pure functions of their arguments: no globals, safe from many threads.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -205,6 +206,10 @@ struct PocketPreset {
 };
 std::optional<PocketPreset> pocket_preset(std::string_view name);
 
+namespace detail {
+struct SceneGeometry;  // the simulator's own view of the scene's cushions and jaws
+}
+
 // A scene checked once, for the simulations that follow (in the spirit of MuJoCo's
 // mjModel): simulate() takes it and checks nothing about the scene again.
 class CompiledScene {
@@ -218,11 +223,15 @@ class CompiledScene {
   bool ok() const { return !error_.has_value(); }
   // scene().ball_ball_params(), built once.
   const BallBallParams& ball_ball_params() const { return ball_ball_; }
+  // The cushion lines, pocket mouths and jaws as the simulator meets them, built once
+  // (empty for an unusable scene).
+  const detail::SceneGeometry& geometry() const { return *geometry_; }
 
  private:
   Scene scene_;
   Validation error_;
   BallBallParams ball_ball_;
+  std::shared_ptr<const detail::SceneGeometry> geometry_;  // immutable: copies share it
 };
 
 // A centred-impulse cue whose tip is d from the ball's centre gives spin k = (5/2) d / R
