@@ -3,9 +3,12 @@
 // percentile, wall clock and the plan's CPU time) and the simulations spent, with the
 // aim solved as a 1-D root (the default) and, with --compare, searched blindly like
 // the other coordinates (PlannerOptions::solve_pot_aim = false), the two alternating
-// problem by problem so that the machine's noise falls on both alike.
+// problem by problem so that the machine's noise falls on both alike. With --pockets
+// every problem is planned (aim solved) twice, alternately: with the standard capture
+// circles and with the snooker preset's jawed pockets.
 //
-//   build/bench/bench_pots [--generated N (100)] [--seed S (1)] [--compare] [--problems DIR]
+//   build/bench/bench_pots [--generated N (100)] [--seed S (1)] [--compare] [--pockets]
+//                          [--problems DIR]
 //
 // It searches with the impact table (loaded from the cache, or built there on the first
 // run) and verifies with the exact method, as `cueplan solve` does.
@@ -69,6 +72,7 @@ int main(int argc, char** argv) {
   int generated = 100;
   uint64_t seed = 1;
   bool compare = false;
+  bool pockets = false;
   std::string dir = std::string(CUEPLAN_PROBLEMS_DIR) + "/pots";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -76,6 +80,7 @@ int main(int argc, char** argv) {
     if (a == "--generated") generated = std::atoi(next().c_str());
     else if (a == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (a == "--compare") compare = true;
+    else if (a == "--pockets") pockets = true;
     else if (a == "--problems") dir = next();
     else {
       fmt::print(stderr, "bench_pots: unknown argument {}\n", a);
@@ -110,6 +115,35 @@ int main(int argc, char** argv) {
   }
   for (planner::KnownShotProblem& k : planner::known_pot_problems(generated, seed, sim))
     cases.emplace_back("generated", std::move(k.problem));
+
+  if (pockets) {
+    const physics::PocketPreset preset = *physics::pocket_preset("snooker");
+    Tally circles[2], jaws[2];
+    for (const auto& [set, problem] : cases) {
+      const int k = set == "shipped" ? 0 : 1;
+      for (bool jawed : {false, true}) {
+        problems::Problem p = problem;
+        p.scene.pockets =
+            jawed ? physics::jawed_pockets(p.scene.length, p.scene.width, preset.corner,
+                                           preset.middle)
+                  : physics::standard_pockets(p.scene.length, p.scene.width,
+                                              physics::kDefaultPocketRadius);
+        planner::PlannerOptions options;
+        options.simulation = sim;
+        options.threads = 1;
+        const double cpu0 = thread_cpu_s();
+        const planner::PlanResult r = planner::plan(p, options);
+        (jawed ? jaws : circles)[k].add(r, thread_cpu_s() - cpu0);
+      }
+    }
+    fmt::print("impact table: {}\n", note);
+    fmt::print("| set | solved | median ms | p95 ms | CPU median ms | CPU p95 ms | median simulations | mean P(pot) | mean P(both) |\n");
+    fmt::print("|---|---|---|---|---|---|---|---|---|\n");
+    fmt::print("{}\n{}\n{}\n{}\n", circles[0].row("shipped, capture circles"),
+               jaws[0].row("shipped, jawed pockets"), circles[1].row("generated, capture circles"),
+               jaws[1].row("generated, jawed pockets"));
+    return 0;
+  }
 
   Tally shipped, known, shipped_blind, known_blind;
   for (const auto& [set, problem] : cases) {
