@@ -42,6 +42,9 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr double kTie = 1e-12;
 // Balls pressed together that would roll on less than this (m) are put at rest.
 constexpr double kSettleDistance = 1e-6;
+// m: how far past a jaw's contact a ball's centre may be found by rounding; a ball
+// further from a jawed pocket's parts than this touches none of them.
+constexpr double kJawSlack = 1e-3;
 
 // The contract's order of event kinds within kTie of each other: ball-ball, cushion,
 // pocket, obstacle contact, motion change.
@@ -354,6 +357,11 @@ class ShotRun {
           consider(EventType::cushion, cushion_contact(q, i, end), i);
     }
     for (const Jaws& w : jaws_) {
+      // A ball that has not been carried into a jaw's rubber touches its parts only
+      // within their boxes (kJawSlack allows for rounding past a contact).
+      if (p.x < w.box.xlo - kJawSlack || p.x > w.box.xhi + kJawSlack ||
+          p.y < w.box.ylo - kJawSlack || p.y > w.box.yhi + kJawSlack)
+        continue;
       for (int part = 0; part < 4; ++part) {
         const int code = jaw_code(w.pocket, part);
         if (before_best(EventType::jaw, code) && jaw_touched(w, part, p))
@@ -444,14 +452,19 @@ class ShotRun {
   double jaw_contact(const Quadratic& q, const Jaws& w, int part, double horizon) const {
     const int side = jaw_side(part);
     if (is_point(part)) {
-      // A straight path (rolling, or sliding with the slip along the motion) that passes
-      // the circle by more than its radius never meets it: no quartic to solve.
+      // A path that passes the circle by more than its radius never meets it: no quartic
+      // to solve. The path p(t) = a0 + a1 t + a2 t^2 strays from its tangent line at a0 by
+      // |a1 x a2| t^2 / |a1| at most, so it misses when the line misses by more than the
+      // radius and that stray over the horizon (a straight path - rolling, or sliding
+      // with the slip along the motion - strays by nothing).
       const double speed = std::hypot(q.a1.x, q.a1.y);
-      const double bend = q.a1.x * q.a2.y - q.a1.y * q.a2.x;
-      if (speed > 0.0 && std::abs(bend) <= 1e-12 * speed * std::hypot(q.a2.x, q.a2.y)) {
+      if (speed > 0.0) {
+        const double bend = q.a1.x * q.a2.y - q.a1.y * q.a2.x;
+        const bool straight = std::abs(bend) <= 1e-12 * speed * std::hypot(q.a2.x, q.a2.y);
+        const double stray = straight ? 0.0 : std::abs(bend) / speed * horizon * horizon;
         const Vec2 r = q.a0 - w.point[side];
         const double miss = std::abs(q.a1.x * r.y - q.a1.y * r.x) / speed;
-        if (miss > w.point_reach * (1.0 + 1e-9)) return kNever;
+        if (miss - stray > w.point_reach * (1.0 + 1e-9)) return kNever;
       }
       // |p(t) - P|^2 - reach^2, a quartic: contact where it falls through zero.
       double c[5];
