@@ -20,7 +20,7 @@
 #include <ostream>
 #include <thread>
 
-#include "cueplan/physics/parallel.hpp"
+#include "cueplan/parallel.hpp"
 #include "csv.hpp"
 #include "exit_codes.hpp"
 
@@ -282,7 +282,7 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
   out << job.header << '\n';
   if (how.flush_each_chunk) out.flush();
   const size_t rows_per_chunk = std::max<size_t>(job.block_rows, 1);
-  const unsigned threads = physics::thread_count(job.threads);
+  const unsigned threads = thread_count(job.threads);
   bool broke_off = false;
 
   if (threads <= 1) {

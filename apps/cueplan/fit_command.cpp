@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "cueplan/draw/table.hpp"
-#include "cueplan/physics/parallel.hpp"
+#include "cueplan/parallel.hpp"
 #include "cueplan/problems/presets.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "exit_codes.hpp"
@@ -226,10 +226,10 @@ int FitCommand::run(std::ostream& out, std::ostream& err) const {
     double seconds = 0;
   };
   std::vector<Outcome> outcomes(shots.size());
-  const unsigned threads = phys::thread_count(args_.threads, shots.size());
+  const unsigned threads = thread_count(args_.threads, shots.size());
   err << kCommandName << ": fitting " << shots.size() << " shots on " << threads << " threads\n";
   size_t reported = 0;
-  phys::parallel_for(
+  parallel_for(
       shots.size(), threads,
       [&](size_t i, unsigned) {
         const auto start = std::chrono::steady_clock::now();

@@ -6,7 +6,7 @@
 #include <optional>
 #include <memory>
 
-#include "cueplan/physics/parallel.hpp"
+#include "cueplan/parallel.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
 #include "csv.hpp"
 #include "field_names.hpp"

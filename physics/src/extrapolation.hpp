@@ -1,6 +1,6 @@
 // Gragg-Bulirsch-Stoer extrapolation and the event landing it serves (private header),
-// shared by the exact integrators of the cushion impact (impact_exact.cpp) and of the
-// ball-ball collision (ball_collision_exact.cpp).
+// shared by the exact integrators of the cushion impact (impact_extrapolation.cpp) and of the
+// ball-ball collision (ball_collision_extrapolation.cpp).
 //
 // Both models are integrated in t = -(normal approach speed), scaled. The normal impulse
 // always slows the approach, so t rises monotonically through the whole impact: the end

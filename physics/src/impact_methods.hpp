@@ -38,7 +38,7 @@ struct ScaledOutcome {
 // Trace samples are recorded in scaled units and converted by the caller.
 ScaledOutcome solve_paper(const ScaledImpact& impact, int steps,
                           std::vector<TraceSample>* trace);
-// The extrapolation method (impact_exact.cpp).
+// The extrapolation method (impact_extrapolation.cpp).
 ScaledOutcome solve_exact(const ScaledImpact& impact, double tolerance, int max_steps,
                           std::vector<TraceSample>* trace);
 // The Taylor method, `exact` (impact_taylor.cpp).

@@ -2,7 +2,7 @@
 // with every cell's error measured at build time (see impact_table.hpp). The build's
 // stages are listed at ImpactTableAccess::build.
 #include "cueplan/physics/impact_table.hpp"
-#include "cueplan/physics/parallel.hpp"
+#include "cueplan/parallel.hpp"
 
 #include <fmt/format.h>
 
@@ -323,7 +323,7 @@ void assign_nodes(std::vector<double>* nodes, size_t n, double fill) {
 // Runs work(i, thread) for i in [0, count) on `threads` threads (this one included).
 template <class Work>
 void parallel_for(int threads, int count, Work&& work) {
-  physics::parallel_for(static_cast<size_t>(count), static_cast<unsigned>(threads),
+  cueplan::parallel_for(static_cast<size_t>(count), static_cast<unsigned>(threads),
                         [&](size_t i, unsigned id) { work(static_cast<int>(i), static_cast<int>(id)); });
 }
 

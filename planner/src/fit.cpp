@@ -10,7 +10,7 @@
 #include <functional>
 #include <numbers>
 
-#include "cueplan/physics/parallel.hpp"
+#include "cueplan/parallel.hpp"
 #include "nlopt_stage.hpp"
 
 namespace cueplan::planner {
@@ -528,7 +528,7 @@ struct ConstantsObjective {
   }
   double loss_at(const std::vector<double>& c) const {
     std::vector<double> losses(shots->size(), 0.0);
-    phys::parallel_for(shots->size(), threads, [&](size_t i, unsigned) {
+    parallel_for(shots->size(), threads, [&](size_t i, unsigned) {
       const ShotData& d = (*all)[(*shots)[i]];
       phys::Scene s = d.scene;
       set_constants(c, &s);
@@ -565,7 +565,7 @@ struct ConstantsObjective {
 void fit_strokes(const std::vector<ShotData>& all, const std::vector<size_t>& shots,
                  const std::vector<double>& c, const FitOptions& fit, unsigned threads,
                  bool refit, std::vector<StrokeFit>* strokes) {
-  phys::parallel_for(shots.size(), threads, [&](size_t i, unsigned) {
+  parallel_for(shots.size(), threads, [&](size_t i, unsigned) {
     const ShotData& d = all[shots[i]];
     phys::Scene s = d.scene;
     set_constants(c, &s);
@@ -632,7 +632,7 @@ CalibrationResult calibrate(const std::vector<ShotData>& shots, const phys::Scen
                             const CalibrationOptions& o,
                             const std::function<void(const std::string&)>& progress) {
   CalibrationResult res;
-  const unsigned threads = phys::thread_count(o.threads);
+  const unsigned threads = thread_count(o.threads);
   const size_t n = shots.size();
   const int folds = std::max(1, std::min<int>(o.folds, static_cast<int>(n)));
   const std::vector<double> c0 = constants_of(start);

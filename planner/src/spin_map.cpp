@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "cueplan/physics/parallel.hpp"
+#include "cueplan/parallel.hpp"
 #include "robustness.hpp"
 #include "search_space.hpp"
 #include "task.hpp"
@@ -123,7 +123,7 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
 
   map.points = grid_points(options.grid, map.spin_max);
   const size_t total = map.points.size();
-  const unsigned threads = phys::thread_count(options.threads, total);
+  const unsigned threads = thread_count(options.threads, total);
   const detail::Task task(problem);
 
   // Each point is written by exactly one worker, into its own slot: the map is the
@@ -147,7 +147,7 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
   }
   const bool estimate = options.success_samples > 0;
   if (!estimate) {
-    physics::parallel_for(
+    parallel_for(
         total, threads,
         [&](size_t i, unsigned) { land(task, speed, aim_deg, lateral, simulation, &map.points[i]); },
         report);
@@ -170,7 +170,7 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
                                       static_cast<double>(std::max<size_t>(items, 1)));
       };
     };
-    physics::parallel_for(
+    parallel_for(
         total, threads,
         [&](size_t i, unsigned) { land(task, speed, aim_deg, lateral, simulation, &map.points[i]); },
         weighed(map_share, 0.0, total, &shown[0]));
@@ -178,7 +178,7 @@ SpinMap spin_map(const problems::Problem& problem, double speed, double aim_deg,
     const std::vector<detail::NoiseDraw> draws =
         detail::noise_draws(options.success_samples, options.seed);
     const auto deadline = options.deadline;
-    physics::parallel_for(
+    parallel_for(
         count, threads,
         [&](size_t j, unsigned) {
           SpinMapPoint& p = map.points[first + j];

@@ -58,7 +58,7 @@ struct Options {
 };
 
 // The exact methods' work bounds per step, from their structure.
-// Extrapolation (physics/src/impact_exact.cpp): every one of at most max_steps steps -
+// Extrapolation (physics/src/impact_extrapolation.cpp): every one of at most max_steps steps -
 // accepted, rejected or searching for a stick break - costs at most 64 right-hand side
 // calls in its deepest extrapolation column, plus one at its start and one per
 // stick-break search.

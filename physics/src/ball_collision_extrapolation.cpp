@@ -1,4 +1,4 @@
-// The `exact` method of the ball-ball collision: the equations of
+// The `extrapolation` method of the ball-ball collision: the equations of
 // ball_collision_model.hpp integrated to a requested tolerance.
 //
 // Independent variable. The normal impulse P always slows the normal approach

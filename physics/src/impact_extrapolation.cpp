@@ -1,4 +1,5 @@
-// The `exact` method: the impact equations integrated to a requested tolerance.
+// The `extrapolation` method: the impact equations integrated to a requested tolerance
+// by extrapolated midpoint steps (the `exact` method is the Taylor series, impact_taylor.cpp).
 //
 // Independent variable. The cushion's normal impulse always slows the ball's normal
 // approach (validate() guarantees du_y/dP_I < 0), so t = -u_y rises monotonically
