@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -424,6 +425,12 @@ LayoutResult parse_layout(const std::string& yaml_text, const std::string& sourc
 }
 
 LayoutResult load_layout(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    LayoutResult r;
+    r.error = path + ": is a directory, not a layout file";
+    return r;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     LayoutResult r;
