@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <random>
 #include <string>
 #include <vector>
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
   }
   std::printf("kind %s, %d layouts, %d rollouts each, seed %llu, look-ahead %d\n", kind.c_str(), layouts,
               rollouts, static_cast<unsigned long long>(seed), lookahead);
-  std::printf("layout  planner  greedy  potted(p)  potted(g)  decision_s  rollouts_s\n");
+  std::printf("layout  planner  greedy  potted(p)  potted(g)  decision_s  rollouts_s  rollouts_cpu_s\n");
   double sum_p = 0, sum_g = 0, pot_p = 0, pot_g = 0;
   std::vector<double> decisions;
   double total_rollout_s = 0;
@@ -152,7 +153,9 @@ int main(int argc, char** argv) {
                                  o, o.seed, 1);
     decisions.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - d0).count());
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
     const planner::RunoutResult rp = planner::plan_runout(g.layout.problem, start, o);
+    const double cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     total_rollout_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     o.policy = planner::RunPolicy::greedy;
     const planner::RunoutResult rg = planner::plan_runout(g.layout.problem, start, o);
@@ -160,8 +163,8 @@ int main(int argc, char** argv) {
     sum_g += rg.runout.p;
     pot_p += rp.mean_potted;
     pot_g += rg.mean_potted;
-    std::printf("%6d  %7.3f  %6.3f  %9.2f  %9.2f  %10.3f  %10.1f\n", k, rp.runout.p, rg.runout.p, rp.mean_potted,
-                rg.mean_potted, decisions.back(), rp.time_s);
+    std::printf("%6d  %7.3f  %6.3f  %9.2f  %9.2f  %10.3f  %10.1f  %14.1f\n", k, rp.runout.p, rg.runout.p,
+                rp.mean_potted, rg.mean_potted, decisions.back(), rp.time_s, cpu_s);
     std::fflush(stdout);
   }
   std::sort(decisions.begin(), decisions.end());

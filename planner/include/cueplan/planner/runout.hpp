@@ -36,7 +36,7 @@ bool parse_run_policy(const std::string& name, RunPolicy* policy);
 // [0, 1], with `balls` on the table and the run at `state` (1 when the run is complete).
 // The run-out planner takes any such function; position_estimate() is its own cheap
 // geometric one, to be replaced by the position-play field (P(next pot) from a cue-ball
-// position) where that is available.
+// position) where that is available. It is called from many threads at once.
 using PositionValue = std::function<double(physics::Vec2 cue, const problems::GameState& state,
                                            const std::vector<physics::ObjectBall>& balls)>;
 
