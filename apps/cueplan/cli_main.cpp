@@ -15,6 +15,7 @@
 #include "merge_command.hpp"
 #include "rebound_command.hpp"
 #include "route_command.hpp"
+#include "run_command.hpp"
 #include "serve_command.hpp"
 #include "simulate_command.hpp"
 #include "solve_command.hpp"
@@ -90,6 +91,7 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   SolveCommand solve(app);
   SpinmapCommand spinmap(app);
   RouteCommand route(app);
+  RunCommand run(app);
   ServeCommand serve(app);
   MergeCommand merge(app);
   FitCommand fit(app);
@@ -97,7 +99,7 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   const std::vector<CommandEntry> commands = {
       entry(rebound), entry(collide), entry(simulate), entry(figures), entry(solve),
       entry(spinmap), entry(route),   entry(serve),    entry(merge),   entry(fit),
-      entry(calibrate)};
+      entry(calibrate), entry(run)};
 
   try {
     app.parse(argc, argv);

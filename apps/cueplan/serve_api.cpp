@@ -15,11 +15,14 @@
 
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/runout.hpp"
+#include "cueplan/problems/game.hpp"
 #include "cueplan/planner/spin_map.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
 #include "field_names.hpp"
 #include "impact_setup.hpp"
 #include "planner_flags.hpp"
+#include "run_command.hpp"
 #include "simulate_batch.hpp"
 #include "simulate_command.hpp"
 #include "solve_command.hpp"
@@ -693,6 +696,96 @@ ApiReply Api::health(int workers, int busy) const {
                   {"max_success_strokes", limits_.max_success_strokes},
                   {"max_events", limits_.max_events}}}};
   return reply;
+}
+
+namespace {
+
+// Runs under the noise one /api/run request may ask for (each re-plans every shot).
+constexpr int kMostRunSamples = 200;
+
+}  // namespace
+
+ApiReply Api::run(std::string_view body) const {
+  return answer([&] {
+    const ordered_json request = parse_body(body);
+    check_keys(request, {"problem", "game", "group", "options"}, "");
+    const ordered_json& options = options_of(request);
+    check_keys(options, {"lookahead", "policy", "samples", "seed", "noise"}, "options");
+    plan::RunoutOptions o;
+    o.samples = 20;
+    for (const auto& [key, v] : options.items()) {
+      const std::string field = "options." + key;
+      if (key == "lookahead") {
+        o.lookahead = read_whole(v, field);
+        if (o.lookahead < 1 || o.lookahead > 5) throw bad(field, field + " must be 1 to 5, got " + v.dump());
+      }
+      if (key == "policy" && !plan::parse_run_policy(read_text(v, field), &o.policy))
+        throw bad(field, field + " must be planner or greedy, got " + v.dump());
+      if (key == "samples") {
+        o.samples = read_whole(v, field);
+        if (o.samples < 0) throw bad(field, field + " must be at least 0, got " + v.dump());
+        at_most(o.samples, kMostRunSamples, field);
+      }
+      if (key == "seed") o.seed = read_seed(v, field);
+      if (key == "noise") {
+        o.noise.scale = read_number(v, field, nullptr);
+        if (!(o.noise.scale >= 0.0)) throw bad(field, field + " must be at least 0, got " + v.dump());
+      }
+    }
+    prob::Game game = prob::Game::any_order;
+    if (const ordered_json* g = member(request, "game"))
+      if (!prob::parse_game(read_text(*g, "game"), &game))
+        throw bad("game", "game must be any_order, nine_ball, eight_ball or snooker, got " + g->dump());
+    std::optional<prob::Group> group;
+    if (const ordered_json* g = member(request, "group")) {
+      prob::Group gr;
+      if (!prob::parse_group(read_text(*g, "group"), &gr))
+        throw bad("group", "group must be solids or stripes, got " + g->dump());
+      if (game != prob::Game::eight_ball) throw bad("group", "group is for eight_ball only");
+      group = gr;
+    }
+    // The problem's table and balls; the run chooses its own pots and positions.
+    const ordered_json* value = member(request, "problem");
+    if (value == nullptr || !value->is_object())
+      throw bad("problem", "problem is required: the layout's fields as an object (balls, cue_ball, ...)");
+    ordered_json layout = *value;
+    for (const char* key : {"pot", "target", "first_contact", "tolerance"}) layout.erase(key);
+    if (layout.contains("cue_ball")) layout["target"] = layout["cue_ball"];
+    ProblemFromJson loaded = problem_from_json(layout, "problem");
+    if (!loaded.problem) throw bad(loaded.error.field, loaded.error.message);
+    prob::Problem problem = std::move(*loaded.problem);
+    problem.has_target = false;
+    if (problem.scene.balls.empty()) throw bad("problem.balls", "problem.balls: a run needs at least one object ball");
+    if (std::string why = prob::check_game_balls(problem.scene.balls, game); !why.empty())
+      throw bad("problem." + why.substr(0, why.find(':')), "problem." + why);
+
+    const prob::GameState start = prob::initial_state(game, group);
+    o.threads = 0;
+    const plan::RunoutResult result = plan::plan_runout(problem, start, o);
+    prob::Layout shown{problem, game, group};
+    ApiReply reply;
+    reply.body = run_json(shown, start, o, result);
+    // Each shot as simulate's JSON, from where the balls stood: the page draws its paths.
+    phys::SimulationOptions simulation;
+    phys::Scene scene = problem.scene;
+    prob::GameState state = start;
+    phys::Vec2 cue = problem.cue_ball;
+    for (size_t i = 0; i < result.plan.shots.size(); ++i) {
+      const plan::RunShot& s = result.plan.shots[i];
+      prob::Problem at = problem;
+      at.scene = scene;
+      at.cue_ball = cue;
+      at.target = cue;
+      const phys::ShotResult sim = phys::simulate(scene, cue, s.shot, simulation);
+      reply.body["plan"][i]["simulation"] = simulate_json(at, s.shot, simulation, sim, "");
+      const prob::ShotJudgement j = prob::judge_stroke(state, scene, {s.ball, s.pocket}, sim);
+      if (!j.continues) break;
+      state = j.next;
+      scene.balls = j.balls;
+      cue = sim.final_position;
+    }
+    return reply;
+  });
 }
 
 }  // namespace cueplan::cli

@@ -8,6 +8,9 @@
 //   POST /api/spinmap   {problem, speed?, aim_deg?, grid?, options?}
 //                                                            -> cueplan spinmap --json, plus
 //                                                               `cells`: every grid spin
+//   POST /api/run       {problem, game?, group?, options?}    -> cueplan run --json, each
+//                                                               plan shot with `simulation`
+//                                                               (simulate's JSON, its paths)
 //   GET  /api/examples  -> {examples: [{name, file, problem, scene}]}
 //   GET  /api/health    -> {status, version, workers, busy, default_method, limits,
 //                           impact_tables}
@@ -67,6 +70,8 @@ class Api {
   ApiReply solve(std::string_view body) const;
   ApiReply simulate(std::string_view body) const;
   ApiReply spinmap(std::string_view body) const;
+  // A run-out from the problem's balls and cue ball (its pot and target ignored).
+  ApiReply run(std::string_view body) const;
   ApiReply examples() const;
   // `workers`: requests computed at once; `busy`: of those, in use now.
   ApiReply health(int workers, int busy) const;

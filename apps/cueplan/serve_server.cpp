@@ -44,9 +44,9 @@ constexpr int kRetryWhenRefused = 1;  // s, a connection over its address's limi
 constexpr auto kDrainTime = std::chrono::milliseconds(500);
 constexpr size_t kDrainBytes = 4u << 20;
 
-enum Endpoint { kSolve, kSimulate, kSpinmap, kEndpoints };
+enum Endpoint { kSolve, kSimulate, kSpinmap, kRun, kEndpoints };
 // First guesses of one request's computing time (s), before any has been measured.
-constexpr double kFirstEstimate[kEndpoints] = {0.5, 0.05, 2.0};
+constexpr double kFirstEstimate[kEndpoints] = {0.5, 0.05, 2.0, 5.0};
 
 // The workers and the first-come queue in front of them. A request runs at once when a
 // worker is free and nobody waits; otherwise it joins the queue, unless the queue is full
@@ -500,7 +500,8 @@ namespace {
 // The methods each known path answers; empty for a path the server does not know.
 const char* allowed_methods(const std::string& path) {
   if (path == "/api/health" || path == "/api/examples") return "GET, HEAD";
-  if (path == "/api/solve" || path == "/api/simulate" || path == "/api/spinmap") return "POST";
+  if (path == "/api/solve" || path == "/api/simulate" || path == "/api/spinmap" || path == "/api/run")
+    return "POST";
   if (path == "/") return "GET, HEAD";
   for (const EmbeddedFile& f : web_assets())
     if (path.size() > 1 && f.name == std::string_view(path).substr(1)) return "GET, HEAD";
@@ -632,6 +633,7 @@ struct WebServer::Impl {
     http.Post("/api/solve", compute(kSolve, &Api::solve));
     http.Post("/api/simulate", compute(kSimulate, &Api::simulate));
     http.Post("/api/spinmap", compute(kSpinmap, &Api::spinmap));
+    http.Post("/api/run", compute(kRun, &Api::run));
     // The page: only the files carried in the binary, by exact name.
     http.Get("/[^/]*", [](const Request& req, Response& res) {
       const std::string name = req.path == "/" ? "index.html" : req.path.substr(1);

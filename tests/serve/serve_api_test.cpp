@@ -330,6 +330,40 @@ TEST(ServeSimulate, AnswersAsTheCommandLineDoes) {
   EXPECT_EQ(comparable(a.body), comparable(cli));
 }
 
+// A run-out from a shipped pot problem's balls (its pot and target set aside): the plan's
+// keys as `cueplan run --json` gives them, each shot with simulate's JSON for its paths,
+// starting where the shot before it left the cue ball; bad fields named.
+TEST(ServeRun, PlansARunFromTheProblemsBallsWithEachShotsPaths) {
+  TestServer server;
+  const json problem = example_problem(server, "pots/cut_middle_pocket.yaml");
+  const Answer a = post(server, "/api/run",
+                        json{{"problem", problem}, {"options", {{"samples", 3}, {"lookahead", 1}}}});
+  ASSERT_EQ(a.status, 200) << a.raw;
+  for (const char* key : {"plan", "runout", "mean_potted", "deaths", "policy"})
+    EXPECT_TRUE(a.body.contains(key)) << key;
+  EXPECT_EQ(a.body["game"], "any_order");
+  EXPECT_EQ(a.body["runout"]["samples"], 3);
+  ASSERT_FALSE(a.body["plan"].empty()) << a.raw;
+  json start = problem["cue_ball"];
+  for (const json& shot : a.body["plan"]) {
+    ASSERT_TRUE(shot.contains("simulation")) << shot.dump();
+    EXPECT_FALSE(shot["simulation"]["path"].empty());
+    EXPECT_NEAR(shot["start"][0].get<double>(), start[0].get<double>(), 1e-9);
+    EXPECT_NEAR(shot["simulation"]["final_position"][0].get<double>(), shot["final_position"][0].get<double>(), 1e-9);
+    start = shot["final_position"];
+  }
+
+  const Answer bad_game = post(server, "/api/run", json{{"problem", problem}, {"game", "ten_ball"}});
+  EXPECT_EQ(bad_game.status, 400);
+  EXPECT_EQ(bad_game.body["field"], "game");
+  const Answer bad_samples = post(server, "/api/run", json{{"problem", problem}, {"options", {{"samples", 100000}}}});
+  EXPECT_EQ(bad_samples.status, 400);
+  EXPECT_EQ(bad_samples.body["field"], "options.samples");
+  const Answer not_pool = post(server, "/api/run", json{{"problem", problem}, {"game", "nine_ball"}});
+  EXPECT_EQ(not_pool.status, 400);
+  EXPECT_NE(not_pool.body["field"].get<std::string>().rfind("problem.balls.", 0), std::string::npos) << not_pool.raw;
+}
+
 TEST(ServeSpinmap, AnswersAsTheCommandLineDoesWithEveryCell) {
   TestServer server;
   const json request = {{"problem", example_problem(server, "one_rail_position.yaml")},

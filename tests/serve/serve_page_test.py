@@ -540,6 +540,30 @@ def check_error(driver, shots):
     Select(driver.find_element(By.ID, "example")).select_by_visible_text(first)
 
 
+def check_run(driver, shots):
+    # "Run out" on a pot example's ball: the sequence shot by shot, each shot's paths on
+    # the table, and how often the run clears under the noise.
+    Select(driver.find_element(By.ID, "example")).select_by_visible_text("straight pot into a corner")
+    wait_for(driver, "the object balls", lambda d: len(
+        d.find_elements(By.CSS_SELECTOR, "#table g.ball[aria-label^='red ball']")) == 1)
+    wait_for(driver, "the page to be idle", lambda d: not d.find_element(By.ID, "busy").is_displayed())
+    driver.find_element(By.ID, "run").click()
+    words = wait_for(driver, "the run's words", lambda d: d.execute_script(
+        "const w = document.getElementById('run-words');"
+        "return !document.getElementById('result').hidden && w ? w.textContent : null;"), timeout=120)
+    if "under the noise it clears" not in words:
+        fail(f"the run does not say how often it clears: {words!r}")
+    items = driver.execute_script(
+        "return [...document.querySelectorAll('#run-shots li')].map(li => li.textContent);")
+    if not items or not all(" into " in t and "P(pot)" in t for t in items):
+        fail(f"the run's shots are not listed ball into pocket with P(pot): {items} ({words})")
+    cue_paths = driver.find_elements(By.CSS_SELECTOR, "#table g.path.main[data-ball='cue ball']")
+    if len(cue_paths) < len([t for t in items]) - 1 or not cue_paths:
+        fail(f"{len(cue_paths)} cue-ball paths drawn for {len(items)} shots")
+    print(f"run: {words} {items}")
+    driver.save_screenshot(os.path.join(shots, "serve_run.png"))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--cueplan", required=True)
@@ -571,6 +595,7 @@ def main():
             outcome = check_pot_example(driver, args.out)
             link = check_share(driver, url, outcome)
             check_layouts(driver, args.out, link)
+            check_run(driver, args.out)
             # (Less the 400s the test provoked: the cue ball in a pocket.)
             logs = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"
                     and not re.search(r"/api/\w+ - .* status of 400", e["message"])]

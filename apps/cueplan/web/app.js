@@ -69,7 +69,7 @@ function busy(text) {
   tick();
   clearInterval(busyTimer);
   busyTimer = setInterval(tick, 100);
-  for (const id of ["plan", "play", "spinmap"]) $(id).disabled = true;
+  for (const id of ["plan", "play", "spinmap", "run"]) $(id).disabled = true;
   return (waitText) => {
     if (waitText) text = waitText;
   };
@@ -77,7 +77,7 @@ function busy(text) {
 function idle() {
   clearInterval(busyTimer);
   $("busy").hidden = true;
-  for (const id of ["plan", "play", "spinmap"]) $(id).disabled = false;
+  for (const id of ["plan", "play", "spinmap", "run"]) $(id).disabled = false;
 }
 
 function showError(e) {
@@ -590,6 +590,48 @@ async function plan() {
 }
 
 // ---------------------------------------------------------------------------
+// Run out: every ball in turn, the pattern shot by shot (/api/run)
+
+const RUN_SAMPLES = 20;
+
+async function runOut() {
+  const version = state.version;
+  const options = { samples: RUN_SAMPLES, seed: Number($("seed").value) || 1,
+    noise: Number($("noise").value) };
+  await task(`Planning the run, then playing it ${RUN_SAMPLES} times under the noise...`, async (wait) => {
+    const r = await call("/api/run", { problem: state.problem, options }, { onWait: wait });
+    if (version !== state.version) return;
+    const shots = r.plan.filter((s) => s.simulation);
+    table.setPaths(shots.map((s) => ({ shot: s.simulation, style: "main" })));
+    const box = $("result");
+    box.replaceChildren();
+    const words = document.createElement("p");
+    words.className = "words";
+    words.id = "run-words";
+    const p = r.runout;
+    words.textContent = (r.plan_clears
+      ? `The run clears the table in ${r.plan.length} shot${r.plan.length === 1 ? "" : "s"}`
+      : `The run stops short after ${r.plan.length} shot${r.plan.length === 1 ? "" : "s"} (${r.plan_ended})`) +
+      `; played ${p.samples} times under the noise it clears ${fixed(100 * p.p, 0)} % ` +
+      `(95 % interval ${fixed(100 * p.low, 0)}-${fixed(100 * p.high, 0)} %).`;
+    const list = document.createElement("ol");
+    list.id = "run-shots";
+    for (const s of r.plan) {
+      const item = document.createElement("li");
+      item.textContent = `${s.ball} into ${pocketWords(s.pocket)}: ${s.shot.stroke}; ` +
+        `P(pot) ${fixed(100 * s.success.p, 0)} %` + (s.next ? `; then ${s.next}` : "");
+      list.appendChild(item);
+    }
+    const rows = [["mean potted", `${fixed(r.mean_potted, 2)} balls`]];
+    for (const d of r.deaths.slice(0, 3))
+      rows.push([`shot ${d.shot}`, `${d.reason} (${d.count} of ${p.samples} runs)`]);
+    box.append(words, list, dl(rows), legendLine());
+    box.hidden = false;
+    animateShot(shots[0]?.simulation);
+  });
+}
+
+// ---------------------------------------------------------------------------
 // Play a stroke of your own
 
 async function play() {
@@ -811,6 +853,7 @@ function bindControls() {
   $("plan").onclick = plan;
   $("play").onclick = play;
   $("spinmap").onclick = requestMap;
+  $("run").onclick = runOut;
 $("forgiving").onchange = requestForgiveness;
 $("forgiving-samples").onchange = () => $("forgiving").checked && requestForgiveness();
   $("speed-range").oninput = (e) => {

@@ -1,0 +1,490 @@
+// Run-outs: the policy (a stroke chosen among legal pots by the value of where the cue
+// ball stops) and its rollouts under the execution noise. See runout.hpp.
+#include "cueplan/planner/runout.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "cueplan/physics/parallel.hpp"
+#include "pot_aim.hpp"
+#include "robustness.hpp"
+#include "task.hpp"
+
+namespace cueplan::planner {
+namespace {
+
+using physics::Vec2;
+
+Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+Vec2 add(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+Vec2 mul(Vec2 a, double k) { return {a.x * k, a.y * k}; }
+double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+Vec2 unit(Vec2 a) {
+  const double n = norm(a);
+  return n > 0.0 ? mul(a, 1.0 / n) : Vec2{1.0, 0.0};
+}
+
+// Distance from p to the segment [a, b].
+double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = sub(b, a);
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0.0 ? std::clamp(dot(sub(p, a), ab) / len2, 0.0, 1.0) : 0.0;
+  return norm(sub(p, add(a, mul(ab, t))));
+}
+
+// The direction out of the table into a pocket: its jaws' own, else from where it lies
+// (a corner's diagonal, a middle pocket's cushion normal).
+Vec2 pocket_axis(const physics::Scene& scene, const physics::Pocket& pocket) {
+  if (pocket.jaws) return pocket.jaws->inward;
+  const double tol = 0.1;
+  Vec2 a{0.0, 0.0};
+  if (pocket.centre.x < tol) a.x = -1.0;
+  if (pocket.centre.x > scene.length - tol) a.x = 1.0;
+  if (pocket.centre.y < tol) a.y = -1.0;
+  if (pocket.centre.y > scene.width - tol) a.y = 1.0;
+  return unit(a);
+}
+
+const physics::ObjectBall* find_ball(const std::vector<physics::ObjectBall>& balls, const std::string& name) {
+  for (const physics::ObjectBall& b : balls)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
+Vec2 clamp_to_table(const physics::Scene& scene, Vec2 p) {
+  const double r = 1.5 * scene.radius();
+  return {std::clamp(p.x, r, scene.length - r), std::clamp(p.y, r, scene.width - r)};
+}
+
+// Places the cue ball could be sent to after potting `ball` (at b) into the pocket at
+// `pocket_centre` from `from`: the ghost ball, drawn back, and along the tangent line.
+std::vector<Vec2> places_after(const physics::Scene& scene, Vec2 from, Vec2 b, Vec2 pocket_centre) {
+  const double R = scene.radius();
+  const Vec2 u = unit(sub(pocket_centre, b));
+  const Vec2 g = sub(b, mul(u, 2.0 * R));
+  const Vec2 v = unit(sub(g, from));
+  Vec2 t = sub(v, mul(u, dot(v, u)));
+  std::vector<Vec2> out{g, sub(g, mul(v, 0.3))};
+  if (norm(t) < 1e-6) {  // a straight pot: either side is as near
+    const Vec2 n{-u.y, u.x};
+    for (double s : {0.35, -0.35}) out.push_back(add(g, mul(n, s)));
+  } else {
+    t = unit(t);
+    for (double s : {0.3, 0.7, 1.1}) out.push_back(add(g, mul(t, s)));
+    out.push_back(add(g, mul(u, 0.25)));
+  }
+  for (Vec2& p : out) p = clamp_to_table(scene, p);
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(RunPolicy policy) { return policy == RunPolicy::greedy ? "greedy" : "planner"; }
+
+bool parse_run_policy(const std::string& name, RunPolicy* policy) {
+  if (name == "planner") *policy = RunPolicy::planner;
+  else if (name == "greedy") *policy = RunPolicy::greedy;
+  else return false;
+  return true;
+}
+
+double pot_chance_estimate(const physics::Scene& scene, Vec2 cue, const std::string& ball, int pocket,
+                           const std::vector<physics::ObjectBall>& balls, const NoiseModel& noise) {
+  const physics::ObjectBall* target = find_ball(balls, ball);
+  if (target == nullptr || pocket < 0 || pocket >= static_cast<int>(scene.pockets.size())) return 0.0;
+  const physics::Pocket& P = scene.pockets[static_cast<size_t>(pocket)];
+  const double R = scene.radius();
+  const Vec2 b = target->position;
+  const Vec2 to = sub(P.centre, b);
+  const double d2 = norm(to);
+  if (d2 < 1e-9) return 0.0;
+  const Vec2 u = mul(to, 1.0 / d2);
+  const Vec2 g = sub(b, mul(u, 2.0 * R));
+  // The ghost ball must fit on the table.
+  const double edge = 0.9 * R;
+  if (g.x < edge || g.x > scene.length - edge || g.y < edge || g.y > scene.width - edge) return 0.0;
+  const Vec2 v = sub(g, cue);
+  const double d1 = norm(v);
+  const double cos_cut = d1 > 1e-9 ? dot(mul(v, 1.0 / d1), u) : 1.0;
+  if (cos_cut < std::cos(80.0 * std::numbers::pi / 180.0)) return 0.0;
+  // Screens: another ball on the cue ball's path or the object ball's.
+  const double clear = 2.0 * R;
+  for (const physics::ObjectBall& o : balls) {
+    if (o.name == ball) continue;
+    if (segment_distance(o.position, cue, g) < clear) return 0.0;
+    if (segment_distance(o.position, b, P.centre) < clear) return 0.0;
+  }
+  for (const Vec2& o : scene.obstacles)
+    if (segment_distance(o, cue, g) < clear || segment_distance(o, b, P.centre) < clear) return 0.0;
+  // The pocket's acceptance, narrower off its axis.
+  const double off_axis = std::max(0.15, dot(u, pocket_axis(scene, P)));
+  const double half_width = std::max(0.1 * R, P.radius * off_axis - 0.25 * R);
+  const double accept = std::atan2(half_width, d2);
+  // The object ball's direction error from the cue's aim error (deg -> rad), the cut
+  // magnifying it: the contact moves d1 * err across a ball of 2R.
+  const double aim = noise.scale * std::hypot(noise.aim_deg, 0.15) * std::numbers::pi / 180.0;
+  const double sigma = std::hypot(aim * std::max(d1, 0.1) / (2.0 * R * std::max(cos_cut, 0.2)),
+                                  0.005);
+  return std::erf(accept / (sigma * std::numbers::sqrt2));
+}
+
+PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& noise, int lookahead,
+                                int beam) {
+  lookahead = std::max(1, lookahead);
+  beam = std::max(1, beam);
+  // POSITION OBJECTIVE (geometric estimate; the position field replaces it when merged).
+  return [scene, noise, lookahead, beam](Vec2 cue, const problems::GameState& state,
+                                         const std::vector<physics::ObjectBall>& balls) -> double {
+    if (state.cleared) return 1.0;
+    struct Node {
+      double value = 1.0;
+      std::vector<Vec2> places;  // where the cue ball may be
+      problems::GameState state;
+      std::vector<physics::ObjectBall> balls;
+    };
+    std::vector<Node> frontier{{1.0, {cue}, state, balls}};
+    double best = 0.0;
+    for (int depth = 0; depth < lookahead && !frontier.empty(); ++depth) {
+      std::vector<Node> next;
+      for (const Node& node : frontier) {
+        for (const std::string& ball : problems::balls_on(node.state, node.balls)) {
+          const physics::ObjectBall* ob = find_ball(node.balls, ball);
+          for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
+            double p = 0.0;
+            Vec2 from = node.places.front();
+            for (const Vec2& place : node.places) {
+              const double q = pot_chance_estimate(scene, place, ball, k, node.balls, noise);
+              if (q > p) {
+                p = q;
+                from = place;
+              }
+            }
+            if (p < 0.01) continue;
+            Node child;
+            child.value = node.value * p;
+            child.balls = node.balls;
+            child.state = problems::after_pot(node.state, scene, ball, &child.balls);
+            if (child.state.cleared || child.balls.empty()) {
+              best = std::max(best, child.value);
+              continue;
+            }
+            child.places = places_after(scene, from, ob->position, scene.pockets[static_cast<size_t>(k)].centre);
+            next.push_back(std::move(child));
+          }
+        }
+      }
+      std::stable_sort(next.begin(), next.end(),
+                       [](const Node& a, const Node& b) { return a.value > b.value; });
+      if (next.size() > static_cast<size_t>(beam)) next.resize(static_cast<size_t>(beam));
+      frontier = std::move(next);
+    }
+    for (const Node& node : frontier) best = std::max(best, node.value);
+    return best;
+  };
+}
+
+std::optional<RunShot> choose_stroke(const problems::Problem& layout, const problems::GameState& state,
+                                     const std::vector<physics::ObjectBall>& balls, Vec2 cue,
+                                     const RunoutOptions& options, uint64_t seed, int threads) {
+  problems::Problem base = layout;
+  base.scene.balls = balls;
+  base.cue_ball = cue;
+  base.has_target = false;
+  base.first_contact.reset();
+  base.pot.reset();
+  const physics::Scene& scene = base.scene;
+  const PositionValue value =
+      options.position ? options.position : position_estimate(scene, options.noise, options.lookahead);
+
+  // Legal pots, the likeliest first, at most eight of them.
+  struct Cand {
+    problems::Candidate pot;
+    double quick = 0.0;
+  };
+  std::vector<Cand> cands;
+  for (const std::string& ball : problems::balls_on(state, balls))
+    for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
+      const double q = pot_chance_estimate(scene, cue, ball, k, balls, options.noise);
+      if (q > 0.02) cands.push_back({{ball, k}, q});
+    }
+  std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.quick > b.quick; });
+  if (cands.size() > 8) cands.resize(8);
+  if (cands.empty()) return std::nullopt;
+
+  // Stroke families: speeds by the distance to travel, and draw, stun or follow.
+  constexpr double kSpeeds[] = {1.0, 1.7, 2.6, 3.6};
+  constexpr double kSpins[] = {-0.9, 0.0, 0.7};
+  struct Trial {
+    size_t cand = 0;
+    physics::Shot shot;
+    bool ok = false;
+    double p_pot = 0.0;
+    double score = -1.0;
+  };
+  std::vector<Trial> trials;
+  for (size_t c = 0; c < cands.size(); ++c)
+    for (double speed : kSpeeds)
+      for (double spin : kSpins) {
+        Trial t;
+        t.cand = c;
+        t.shot.speed = speed;
+        t.shot.topspin_k = spin;
+        trials.push_back(t);
+      }
+  const std::vector<detail::NoiseDraw> draws = detail::noise_draws(options.pot_samples, seed);
+  physics::SimulationOptions quiet = options.simulation;
+  quiet.record_path = false;
+
+  std::vector<problems::Problem> problems_of(cands.size(), base);
+  for (size_t c = 0; c < cands.size(); ++c) {
+    problems_of[c].pot = problems::Pot{cands[c].pot.ball, cands[c].pot.pocket};
+    problems_of[c].first_contact = cands[c].pot.ball;
+  }
+  physics::parallel_for(trials.size(), physics::thread_count(threads, trials.size()),
+                        [&](size_t i, unsigned) {
+    Trial& t = trials[i];
+    const problems::Problem& problem = problems_of[t.cand];
+    const problems::Candidate& pot = cands[t.cand].pot;
+    const detail::Task task(problem);
+    const detail::PotAim::Aimed aimed = task.pot_aim->aim(task, t.shot, quiet);
+    if (!aimed.found) return;
+    const problems::ShotJudgement nominal = problems::judge_stroke(state, scene, pot, aimed.result);
+    const auto aimed_ball_in = [&](const physics::ShotResult& r) {
+      for (const physics::BallOutcome& b : r.balls)
+        if (b.name == pot.ball) return b.pocketed && b.pocket == pot.pocket;
+      return false;
+    };
+    if (!nominal.continues || !aimed_ball_in(aimed.result)) return;
+    t.shot = aimed.shot;
+    t.ok = true;
+    const double miscue = detail::miscue_limit(problem);
+    const double squirt = detail::intended_squirt_deg(problem, t.shot);
+    int pots = 0;
+    double total = 0.0;
+    for (const detail::NoiseDraw& draw : draws) {
+      physics::Shot noisy;
+      if (!detail::noisy_stroke(t.shot, draw, options.noise, scene.radius(), miscue, squirt, &noisy))
+        continue;
+      const physics::ShotResult r = task.simulate(noisy, quiet);
+      const problems::ShotJudgement j = problems::judge_stroke(state, scene, pot, r);
+      if (!j.continues) continue;
+      ++pots;
+      if (options.policy == RunPolicy::planner)
+        total += j.next.cleared ? 1.0 : value(r.final_position, j.next, j.balls);
+    }
+    const double n = static_cast<double>(std::max<size_t>(draws.size(), 1));
+    t.p_pot = pots / n;
+    t.score = options.policy == RunPolicy::planner ? total / n : t.p_pot;
+  });
+
+  const Trial* best = nullptr;
+  for (const Trial& t : trials)
+    if (t.ok && (best == nullptr || t.score > best->score)) best = &t;
+  if (best == nullptr) return std::nullopt;
+
+  RunShot out;
+  const problems::Candidate& pot = cands[best->cand].pot;
+  out.ball = pot.ball;
+  out.pocket = pot.pocket;
+  out.pocket_name = problems::pocket_name(scene, pot.pocket);
+  out.shot = best->shot;
+  out.cue_from = cue;
+  out.p_pot = best->p_pot;
+  out.p_samples = static_cast<int>(draws.size());
+  out.score = best->score;
+  const physics::ShotResult r = physics::simulate(scene, cue, best->shot, options.simulation);
+  out.cue_to = r.final_position;
+  out.path = r.path;
+  const problems::ShotJudgement j = problems::judge_stroke(state, scene, pot, r);
+  out.verdict = j.continues ? "potted" : j.reason;
+  out.points = j.points;
+  if (j.continues && !j.next.cleared) {
+    // The ball the position aims at: the likeliest next pot from where it stops.
+    double p = 0.0;
+    for (const std::string& ball : problems::balls_on(j.next, j.balls))
+      for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
+        const double q = pot_chance_estimate(scene, r.final_position, ball, k, j.balls, options.noise);
+        if (q > p) {
+          p = q;
+          out.next_ball = ball + " into " + problems::pocket_name(scene, k);
+        }
+      }
+  }
+  return out;
+}
+
+namespace {
+
+struct Rollout {
+  bool cleared = false;
+  int potted = 0;
+  int score = 0;
+  int died_at = 0;
+  std::string reason;
+};
+
+constexpr uint64_t kDecisionStream = 0x646563ULL;   // "dec"
+constexpr uint64_t kExecutionStream = 0x657865ULL;  // "exe"
+
+Rollout play(const problems::Problem& layout, const problems::GameState& start,
+             const RunoutOptions& options, uint64_t rollout) {
+  Rollout out;
+  problems::GameState state = start;
+  std::vector<physics::ObjectBall> balls = layout.scene.balls;
+  Vec2 cue = layout.cue_ball;
+  physics::SimulationOptions quiet = options.simulation;
+  quiet.record_path = false;
+  for (int shot = 1; shot <= options.max_shots; ++shot) {
+    const uint64_t key = rollout * 1000003ULL + static_cast<uint64_t>(shot);
+    const std::optional<RunShot> chosen =
+        choose_stroke(layout, state, balls, cue, options,
+                      detail::stream_seed(detail::stream_seed(options.seed, kDecisionStream), key), 1);
+    if (!chosen) {
+      out.died_at = shot;
+      out.reason = "no pot on";
+      return out;
+    }
+    problems::Problem p = layout;
+    p.scene.balls = balls;
+    p.cue_ball = cue;
+    p.pot = problems::Pot{chosen->ball, chosen->pocket};
+    const detail::NoiseDraw draw = detail::noise_draws(
+        1, detail::stream_seed(detail::stream_seed(options.seed, kExecutionStream), key))[0];
+    physics::Shot noisy;
+    if (!detail::noisy_stroke(chosen->shot, draw, options.noise, p.scene.radius(),
+                              detail::miscue_limit(p), detail::intended_squirt_deg(p, chosen->shot),
+                              &noisy)) {
+      out.died_at = shot;
+      out.reason = "miscue";
+      return out;
+    }
+    const physics::ShotResult r = physics::simulate(p.scene, cue, noisy, quiet);
+    const problems::ShotJudgement j =
+        problems::judge_stroke(state, p.scene, {chosen->ball, chosen->pocket}, r);
+    if (!j.continues) {
+      out.died_at = shot;
+      out.reason = j.reason;
+      return out;
+    }
+    state = j.next;
+    balls = j.balls;
+    cue = r.final_position;
+    out.potted = state.potted;
+    out.score = state.score;
+    if (state.cleared || balls.empty()) {
+      out.cleared = true;
+      return out;
+    }
+  }
+  out.died_at = options.max_shots;
+  out.reason = "shot limit";
+  return out;
+}
+
+// P(the stroke pots legally and the run goes on) from report_samples noisy strokes.
+Estimate pot_estimate(const problems::Problem& p, const problems::GameState& state,
+                      const problems::Candidate& pot, const physics::Shot& shot,
+                      const RunoutOptions& options, uint64_t seed) {
+  const std::vector<detail::NoiseDraw> draws = detail::noise_draws(options.report_samples, seed);
+  std::vector<char> ok(draws.size(), 0);
+  physics::SimulationOptions quiet = options.simulation;
+  quiet.record_path = false;
+  const physics::CompiledScene scene(p.scene);
+  const double miscue = detail::miscue_limit(p);
+  const double squirt = detail::intended_squirt_deg(p, shot);
+  physics::parallel_for(draws.size(), physics::thread_count(options.threads, draws.size()),
+                        [&](size_t i, unsigned) {
+    physics::Shot noisy;
+    if (!detail::noisy_stroke(shot, draws[i], options.noise, p.scene.radius(), miscue, squirt, &noisy))
+      return;
+    const physics::ShotResult r = physics::simulate(scene, p.cue_ball, noisy, quiet);
+    ok[i] = problems::judge_stroke(state, p.scene, pot, r).continues ? 1 : 0;
+  });
+  return wilson_estimate(static_cast<int>(std::count(ok.begin(), ok.end(), 1)),
+                         static_cast<int>(draws.size()));
+}
+
+}  // namespace
+
+RunoutResult plan_runout(const problems::Problem& layout, const problems::GameState& start,
+                         const RunoutOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  RunoutResult result;
+  // The plan: the policy played without noise.
+  {
+    problems::GameState state = start;
+    std::vector<physics::ObjectBall> balls = layout.scene.balls;
+    Vec2 cue = layout.cue_ball;
+    for (int shot = 1; shot <= options.max_shots; ++shot) {
+      const auto d0 = Clock::now();
+      const std::optional<RunShot> chosen = choose_stroke(
+          layout, state, balls, cue, options,
+          detail::stream_seed(detail::stream_seed(options.seed, kDecisionStream), static_cast<uint64_t>(shot)),
+          options.threads);
+      if (shot == 1) result.decision_time_s = std::chrono::duration<double>(Clock::now() - d0).count();
+      if (!chosen) {
+        result.plan.ended = "no pot on";
+        break;
+      }
+      result.plan.shots.push_back(*chosen);
+      problems::Problem p = layout;
+      p.scene.balls = balls;
+      p.cue_ball = cue;
+      result.plan.shots.back().pot = pot_estimate(
+          p, state, {chosen->ball, chosen->pocket}, chosen->shot, options,
+          detail::stream_seed(options.seed, 0x706f74ULL + static_cast<uint64_t>(shot)));
+      const physics::ShotResult r = physics::simulate(p.scene, cue, chosen->shot, options.simulation);
+      const problems::ShotJudgement j = problems::judge_stroke(state, p.scene, {chosen->ball, chosen->pocket}, r);
+      if (!j.continues) {
+        result.plan.ended = j.reason;
+        break;
+      }
+      state = j.next;
+      balls = j.balls;
+      cue = r.final_position;
+      result.plan.potted = state.potted;
+      result.plan.score = state.score;
+      if (state.cleared || balls.empty()) {
+        result.plan.cleared = true;
+        break;
+      }
+      if (shot == options.max_shots) result.plan.ended = "shot limit";
+    }
+  }
+  // The rollouts.
+  if (options.samples > 0) {
+    std::vector<Rollout> rollouts(static_cast<size_t>(options.samples));
+    const auto work = [&](size_t i, unsigned) { rollouts[i] = play(layout, start, options, i); };
+    const unsigned threads = physics::thread_count(options.threads, rollouts.size());
+    if (options.progress)
+      physics::parallel_for(rollouts.size(), threads, work, [&](size_t done) {
+        options.progress(static_cast<int>(done), options.samples);
+      });
+    else
+      physics::parallel_for(rollouts.size(), threads, work);
+    int clears = 0;
+    double potted = 0.0, score = 0.0;
+    std::map<std::pair<int, std::string>, int> deaths;
+    for (const Rollout& r : rollouts) {
+      clears += r.cleared ? 1 : 0;
+      potted += r.potted;
+      score += r.score;
+      if (!r.cleared) ++deaths[{r.died_at, r.reason}];
+    }
+    result.runout = wilson_estimate(clears, options.samples);
+    result.mean_potted = potted / options.samples;
+    result.mean_score = score / options.samples;
+    for (const auto& [key, count] : deaths) result.deaths.push_back({key.first, key.second, count});
+    std::stable_sort(result.deaths.begin(), result.deaths.end(),
+                     [](const RunDeath& a, const RunDeath& b) { return a.count > b.count; });
+  }
+  result.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace cueplan::planner
