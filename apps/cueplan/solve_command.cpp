@@ -100,8 +100,12 @@ void write_text(std::ostream& out, const prob::Problem& problem,
     line("target", "x = " + number(problem.target.x, "m") + ", y = " +
                        number(problem.target.y, "m") + ", tolerance " +
                        number(problem.tolerance, "m"));
+  else if (!problem.next.empty())
+    line("target", "none: position for the next pot, the cue ball may stop anywhere");
   else
     line("target", "none: a pure pot, the cue ball may stop anywhere");
+  if (b.next)
+    for (const auto& [label, text] : next_lines(*b.next)) line(label, text);
   line("miss distance", miss_text(problem, b));
   line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
@@ -223,7 +227,11 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
                 {"success_probability", "fraction of noisy strokes, 0..1 (= success.both.p)"},
                 {"success",
                  "fractions of noisy strokes, 0..1: p with its 95 % Wilson interval [low, high] "
-                 "over `samples` strokes; position is given the pot (all strokes without one)"},
+                 "over `samples` strokes; position is given the pot (all strokes without one); "
+                 "next (problems with next): the mean P(next pot) from the landings of the "
+                 "strokes that pot, its interval widened by the position field's allowance"},
+                {"next", "position play: ball, pocket, p (P(next pot) from the landing), cut_deg, "
+                         "distance_m (m, cue ball to the next ball), zone_area_m2 (m^2), in_zone"},
                 {"time_s", "s"},
                 {"max_cushion_normal_speed", "m/s"},
                 {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"}};
@@ -340,8 +348,10 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   CLI::Option* json = c.add_flag("--json", args_.json,
              "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
              "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
-             "success {pot (pot problems), position, both: {p, low, high, samples}}, pot {ball, "
-             "pocket, cut_deg, thickness, throw_deg, margin_m, aim_margin_deg, ...}, failure, "
+             "success {pot (pot problems), position, next (with next), both: {p, low, high, "
+             "samples}}, pot {ball, pocket, cut_deg, thickness, throw_deg, margin_m, "
+             "aim_margin_deg, ...}, next {ball, pocket, p, cut_deg, distance_m, zone_area_m2, "
+             "in_zone, ...} (with next), failure, "
              "evaluations, time_s, alternatives (same shape), constraints, ...")
       ->group(output);
   CLI::Option* svg =

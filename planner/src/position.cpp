@@ -336,6 +336,52 @@ std::shared_ptr<const PositionField> PositionCache::get(const problems::Problem&
   return fields_.try_emplace(key, std::move(field)).first->second;
 }
 
+namespace {
+
+// A cut as a player names it.
+std::string cut_words(const NextShot& s) {
+  if (s.cut_deg < 3.0) return "a straight pot";
+  if (s.thickness == "full") return "a nearly full-ball pot";
+  if (s.thickness == "3/4") return "a three-quarter-ball cut";
+  if (s.thickness == "half") return "a half-ball cut";
+  if (s.thickness == "1/4") return "a quarter-ball cut";
+  return "a thin cut";
+}
+
+}  // namespace
+
+NextReport next_report(const problems::Problem& problem, const PositionField& field, Vec2 landing) {
+  NextReport r;
+  const problems::NextPot& n = field.next().front();
+  r.ball = n.ball;
+  r.pocket = n.pocket;
+  r.pocket_name = problems::pocket_name(problem.scene, n.pocket);
+  r.landing = landing;
+  const NextShot s = field.next_shot(landing);
+  r.p = s.p;
+  r.cut_deg = s.cut_deg;
+  r.cut_side = s.cut_side;
+  r.thickness = s.thickness;
+  r.distance_m = s.cue_distance_m;
+  r.screened_by = s.screened_by;
+  r.zone_area_m2 = field.zone_area_m2();
+  r.in_zone = field.in_zone(landing);
+  r.best_p = field.best_value();
+  r.best = field.best();
+  const std::string cm = fmt::format("{:.0f} cm", 100.0 * s.cue_distance_m);
+  if (!s.valid_position)
+    r.words = fmt::format("leaves no shot at the {}", n.ball);
+  else if (!s.screened_by.empty())
+    r.words = fmt::format("leaves the {} screened by the {}", n.ball, s.screened_by);
+  else if (s.impossible_cut)
+    r.words = fmt::format("leaves no pot of the {} into the {} (too thin a cut)", n.ball, r.pocket_name);
+  else
+    r.words = fmt::format("leaves {} on the {}, {}", cut_words(s), n.ball, cm);
+  if (s.valid_position && s.near_cushion && s.screened_by.empty()) r.words += ", cueing over the cushion";
+  if (s.valid_position && s.too_close) r.words += ", too close to cue freely";
+  return r;
+}
+
 size_t PositionCache::size() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return fields_.size();

@@ -239,5 +239,57 @@ TEST(PositionFieldValidation, AgreesWithThePlannersPotChanceOverTheTable) {
   EXPECT_GE(rho, 0.8);
 }
 
+// Position play end to end on the shipped example: the planner pots the red, reports
+// P(pot), P(next) and P(both) with intervals and what the landing leaves; solving the
+// black from where the cue ball stops agrees with the reported success.next.
+TEST(PositionPlay, SolvesTheShippedRedThenBlackAndTheNextPotAgrees) {
+  const problems::LoadResult loaded =
+      problems::load_problem(std::string(CUEPLAN_PROBLEMS_DIR) + "/pots/red_then_black.yaml");
+  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const problems::Problem& p = *loaded.problem;
+  PlannerOptions o;
+  o.simulation.record_path = false;
+  PositionCache cache;
+  o.position_cache = &cache;
+  const PlanResult r = plan(p, o);
+  ASSERT_EQ(r.status, PlanStatus::solved) << r.message;
+  EXPECT_EQ(cache.size(), 1u);
+  ASSERT_TRUE(r.position_field);
+  const PlannedShot& b = r.best;
+  // Played again independently: the red drops in its pocket.
+  const physics::ShotResult again = physics::simulate(p.scene, p.cue_ball, b.shot);
+  EXPECT_TRUE(problems::makes_pot(p, again));
+  ASSERT_TRUE(b.success.pot && b.success.next);
+  EXPECT_GT(b.success.next->samples, 0);
+  EXPECT_LE(b.success.next->low, b.success.next->p);
+  EXPECT_GE(b.success.next->high, b.success.next->p);
+  EXPECT_LE(b.success.both.p, b.success.pot->p);
+  // P(both) is counted with the next pot drawn at each landing: about P(pot) E[P(next)].
+  EXPECT_NEAR(b.success.both.p, b.success.pot->p * b.success.next->p, 0.1);
+  ASSERT_TRUE(b.next.has_value());
+  EXPECT_EQ(b.next->ball, "black");
+  EXPECT_EQ(b.next->pocket_name, "bottom_right");
+  EXPECT_TRUE(b.next->in_zone) << b.next->words;
+  EXPECT_GT(b.next->zone_area_m2, 0.0);
+  EXPECT_NE(b.next->words.find("on the black"), std::string::npos) << b.next->words;
+  EXPECT_NE(r.message.find("the next pot (black into the bottom_right)"), std::string::npos)
+      << r.message;
+  // The next pot solved from where the cue ball stops, the red gone.
+  problems::Problem next = parse("balls: {black: [3.245, 0.889]}\npot: {ball: black, pocket: "
+                                 "bottom_right}\ncue_ball: [" +
+                                 std::to_string(b.final_position.x) + ", " +
+                                 std::to_string(b.final_position.y) + "]\n");
+  const PlanResult n = plan(next, o);
+  ASSERT_EQ(n.status, PlanStatus::solved) << n.message;
+  ASSERT_TRUE(n.best.success.pot);
+  std::cout << "landing (" << b.final_position.x << ", " << b.final_position.y << "): reported "
+            << "next " << b.success.next->p << " [" << b.success.next->low << ", "
+            << b.success.next->high << "], field there " << b.next->p << ", planner's P(pot) "
+            << n.best.success.pot->p << "\n";
+  EXPECT_GE(n.best.success.pot->p, 0.6);
+  EXPECT_GE(n.best.success.pot->p, b.success.next->low);
+  EXPECT_LE(n.best.success.pot->p, b.success.next->high);
+}
+
 }  // namespace
 }  // namespace cueplan::planner
