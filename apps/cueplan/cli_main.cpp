@@ -19,6 +19,7 @@
 #include "simulate_command.hpp"
 #include "solve_command.hpp"
 #include "spinmap_command.hpp"
+#include "zone_command.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -89,6 +90,7 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   FiguresCommand figures(app);
   SolveCommand solve(app);
   SpinmapCommand spinmap(app);
+  ZoneCommand zone(app);
   RouteCommand route(app);
   ServeCommand serve(app);
   MergeCommand merge(app);
@@ -97,7 +99,7 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   const std::vector<CommandEntry> commands = {
       entry(rebound), entry(collide), entry(simulate), entry(figures), entry(solve),
       entry(spinmap), entry(route),   entry(serve),    entry(merge),   entry(fit),
-      entry(calibrate)};
+      entry(calibrate), entry(zone)};
 
   try {
     app.parse(argc, argv);

@@ -14,6 +14,7 @@
 #include "cueplan/draw/table.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/position.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
 #include "exit_codes.hpp"
@@ -266,6 +267,21 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
                             const plan::PlanResult& r) {
   const plan::PlannedShot& b = r.best;
   draw::TableScene d = draw::problem_table(problem);
+  if (r.position_field && r.position_field->best_value() > 0.0) {
+    // Position play: the next pot's zone, outlined over the cloth (cueplan zone shades it).
+    const plan::PositionField& f = *r.position_field;
+    draw::TableField zone;
+    zone.cell = f.cell();
+    zone.columns = f.columns();
+    zone.rows = f.rows();
+    for (int j = 0; j < zone.rows; ++j)
+      for (int i = 0; i < zone.columns; ++i) zone.values.push_back(f.cell_value(i, j));
+    zone.shade = false;
+    zone.outline_level = f.zone_threshold();
+    zone.outline_legend = fmt::format("zone for the {}: P(next pot) within 10 points of the best",
+                                      problem.next.front().ball);
+    d.field = std::move(zone);
+  }
   for (const plan::PlannedShot& a : r.alternatives)
     d.balls.front().paths.push_back(path_of(problem, a, options.simulation, true));
   d.balls.front().paths.push_back(path_of(problem, b, options.simulation, false));
@@ -277,6 +293,13 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
     draw::DrawnBall drawn{ball.name, draw::ball_colour(ball.name).value_or(draw::Colour{0.85, 0.55, 0.2}),
                           ball.start, {}};
     if (!ball.path.empty()) drawn.paths.push_back({ball.path, ball.events, false});
+    // problem_table drew it where it stands: give that one its path rather than a twin.
+    auto same = std::find_if(d.balls.begin(), d.balls.end(),
+                             [&](const draw::DrawnBall& shown) { return shown.name == ball.name; });
+    if (same != d.balls.end()) {
+      same->paths = std::move(drawn.paths);
+      continue;
+    }
     d.balls.push_back(std::move(drawn));
   }
   if (!r.alternatives.empty())
@@ -296,7 +319,10 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
                 tip_offset_words(b.shot).c_str());
   d.caption.push_back(buf);
   std::string outcome;
-  if (std::isfinite(b.miss_distance)) {
+  if (!problem.has_target && b.outcome == phys::ShotStatus::rest) {
+    outcome = fmt::format("Stops at x = {:.3f} m, y = {:.3f} m after {}", b.final_position.x,
+                          b.final_position.y, route_text(problem.scene, b.route));
+  } else if (std::isfinite(b.miss_distance)) {
     buf = fmt::format("Stops {:.3g} mm from the target after {}",
                   1000.0 * b.miss_distance, route_text(problem.scene, b.route).c_str());
     outcome = buf;

@@ -128,6 +128,27 @@ Success estimate_success(const problems::Problem& problem, const physics::Shot& 
       .success;
 }
 
+std::vector<NoisyLanding> noisy_landings(const problems::Problem& problem, const physics::Shot& shot,
+                                         const NoiseModel& noise, int samples, uint64_t seed,
+                                         const physics::SimulationOptions& simulation) {
+  std::vector<NoisyLanding> out;
+  if (samples <= 0 || noise.validate()) return out;
+  const detail::Task task(problem);
+  physics::SimulationOptions quiet = simulation;
+  quiet.record_path = false;
+  const double radius = problem.scene.radius();
+  const double miscue = detail::miscue_limit(problem);
+  const double squirt = detail::intended_squirt_deg(problem, shot);
+  for (const detail::NoiseDraw& d : detail::noise_draws(samples, seed)) {
+    physics::Shot s;
+    if (!detail::noisy_stroke(shot, d, noise, radius, miscue, squirt, &s)) continue;
+    const physics::ShotResult r = task.simulate(s, quiet);
+    if (r.status != physics::ShotStatus::rest) continue;
+    out.push_back({r.final_position, problems::check_outcome(problem, r).pot_made()});
+  }
+  return out;
+}
+
 double success_probability(const problems::Problem& problem, const physics::Shot& shot,
                            const NoiseModel& noise, int samples, uint64_t seed,
                            const physics::SimulationOptions& simulation) {

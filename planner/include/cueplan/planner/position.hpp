@@ -140,6 +140,18 @@ class PositionField {
   double zone_area_m2_ = 0.0;
 };
 
+// Where a player's noisy strokes aimed at `shot` leave the cue ball: one entry per
+// stroke that comes to rest on the table (miscues and pocketed cue balls left out),
+// with whether it made the problem's pot cleanly; the same draws as estimate_success for
+// the same seed. For pictures (the landing cloud of `cueplan zone`).
+struct NoisyLanding {
+  physics::Vec2 position;
+  bool potted = false;
+};
+std::vector<NoisyLanding> noisy_landings(const problems::Problem& problem, const physics::Shot& shot,
+                                         const NoiseModel& noise, int samples, uint64_t seed,
+                                         const physics::SimulationOptions& simulation);
+
 // Fields built once per problem and noise model and shared: the stroke search asks a
 // field thousands of times, and solve, zone and the run-out planner may ask for the same
 // problem's again. Thread-safe; a cache is an object the caller owns (no static cache).
