@@ -48,13 +48,20 @@ double phi(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
 // (alpha between u and the pocket's inward direction); the ball's centre must pass a
 // fraction kJawClearance of a radius inside each point (a ball that meets a facing
 // lightly still drops; calibrated against the simulator's pots, docs/position.md).
+// Beyond kSteepApproach from the centre line the far jaw takes more and more of the
+// rest, until kMostApproach, beyond which nothing drops (the planner's P(pot) into a
+// middle pocket at 69 degrees is under a third of the mouth's projection alone).
 constexpr double kJawClearance = 0.5;
-constexpr double kMostApproach = 75.0 * kDeg;  // beyond, a jawed pocket is not entered
+constexpr double kSteepApproach = 50.0 * kDeg;
+constexpr double kMostApproach = 75.0 * kDeg;
 double opening_half_width(const physics::Pocket& pocket, Vec2 u, double radius) {
   if (!pocket.jaws) return pocket.radius;
-  const double c = dot(u, pocket.jaws->inward);
-  if (c < std::cos(kMostApproach)) return 0.0;
-  return std::max(0.0, 0.5 * pocket.jaws->shape.mouth * c - kJawClearance * radius);
+  const double c = std::clamp(dot(u, pocket.jaws->inward), -1.0, 1.0);
+  const double alpha = std::acos(c);
+  if (alpha >= kMostApproach) return 0.0;
+  const double steep =
+      std::clamp((kMostApproach - alpha) / (kMostApproach - kSteepApproach), 0.0, 1.0);
+  return steep * std::max(0.0, 0.5 * pocket.jaws->shape.mouth * c - kJawClearance * radius);
 }
 
 // The throw's deviation (deg) at the largest, a half-ball cut: the noise's speed and
@@ -112,9 +119,41 @@ PositionField::PositionField(const physics::Scene& layout, std::vector<problems:
     t.centre = it->position;
     t.aim = pocket.centre;
     t.u = unit(sub(t.aim, t.centre));
+    double w = 0.0;
+    if (pocket.jaws) {
+      w = opening_half_width(pocket, t.u, radius_);
+    } else {
+      // A capture circle: the ball's centre drops where it enters the part of the circle
+      // that lies on the cloth (where the centre can be without meeting a cushion; at a
+      // corner a small part of it). The band of straight lines through that part, across
+      // the ball's direction, is the opening; its middle is the aim (twice: the direction
+      // moves with the aim).
+      for (int pass = 0; pass < 2; ++pass) {
+        const Vec2 across{-t.u.y, t.u.x};
+        double lo = 1e9, hi = -1e9;
+        constexpr int kSamples = 40;
+        for (int a = 0; a <= kSamples; ++a)
+          for (int b = 0; b <= kSamples; ++b) {
+            const Vec2 q{pocket.centre.x + pocket.radius * (2.0 * a / kSamples - 1.0),
+                         pocket.centre.y + pocket.radius * (2.0 * b / kSamples - 1.0)};
+            if (norm(sub(q, pocket.centre)) > pocket.radius || q.x < contact_offset_ ||
+                q.y < contact_offset_ || q.x > layout_.length - contact_offset_ ||
+                q.y > layout_.width - contact_offset_)
+              continue;
+            const double s = dot(sub(q, t.centre), across);
+            lo = std::min(lo, s);
+            hi = std::max(hi, s);
+          }
+        if (hi < lo) break;  // no part on the cloth
+        w = 0.5 * (hi - lo);
+        // The aim: the band's middle, as far along as the pocket's centre.
+        const double along = dot(sub(pocket.centre, t.centre), t.u);
+        t.aim = add(add(t.centre, scaled(t.u, along)), scaled(across, 0.5 * (hi + lo)));
+        t.u = unit(sub(t.aim, t.centre));
+      }
+    }
     t.distance = norm(sub(t.aim, t.centre));
     t.ghost = sub(t.centre, scaled(t.u, 2.0 * radius_));
-    const double w = opening_half_width(pocket, t.u, radius_);
     t.half_angle = t.distance > w ? std::asin(w / t.distance) : 0.5 * std::numbers::pi;
     // The object ball's way in: clear of every other ball until it reaches the mouth.
     const Vec2 end = sub(t.aim, scaled(t.u, std::min(t.distance, radius_)));
