@@ -20,6 +20,7 @@
 #include "simulate_command.hpp"
 #include "solve_command.hpp"
 #include "spinmap_command.hpp"
+#include "zone_command.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -90,6 +91,7 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   FiguresCommand figures(app);
   SolveCommand solve(app);
   SpinmapCommand spinmap(app);
+  ZoneCommand zone(app);
   RouteCommand route(app);
   RunCommand run(app);
   ServeCommand serve(app);
@@ -99,7 +101,7 @@ int parse_and_dispatch(int argc, const char* const* argv, std::ostream& out, std
   const std::vector<CommandEntry> commands = {
       entry(rebound), entry(collide), entry(simulate), entry(figures), entry(solve),
       entry(spinmap), entry(route),   entry(serve),    entry(merge),   entry(fit),
-      entry(calibrate), entry(run)};
+      entry(calibrate), entry(run), entry(zone)};
 
   try {
     app.parse(argc, argv);

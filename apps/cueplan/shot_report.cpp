@@ -133,12 +133,17 @@ ordered_json success_json(const plan::Success& s) {
   ordered_json j;
   if (s.pot) j["pot"] = estimate_json(*s.pot);
   j["position"] = estimate_json(s.position);
+  if (s.next) j["next"] = estimate_json(*s.next);
   j["both"] = estimate_json(s.both);
   return j;
 }
 
 std::string pot_success_words(const plan::Success& s) {
   if (!s.pot) return {};
+  if (s.next)
+    return " (pot now and pot next); the pot alone " + estimate_text(*s.pot) +
+           ", the next pot from where the cue ball stops " + estimate_text(*s.next) + " over " +
+           std::to_string(s.next->samples) + " landings";
   return " (pot and position); the pot alone " + estimate_text(*s.pot) +
          ", the position given the pot " + estimate_text(s.position) + " of " +
          std::to_string(s.position.samples);
@@ -188,6 +193,37 @@ std::vector<std::pair<std::string, std::string>> pot_lines(const plan::PotReport
                     "error of {:.3f} deg would miss",
                     pot.ball, 1e3 * pot.margin_m, pot.aim_margin_deg));
   return lines;
+}
+
+std::vector<std::pair<std::string, std::string>> next_lines(const plan::NextReport& n) {
+  std::vector<std::pair<std::string, std::string>> lines;
+  lines.emplace_back("next", fmt::format("{} into the {} pocket: {} (P(next pot) {:.0f} % from there)",
+                                         n.ball, n.pocket_name, n.words, 100.0 * n.p));
+  lines.emplace_back(
+      "zone", fmt::format("{:.0f} cm^2 where P(next pot) is within 10 points of the best ({:.0f} % "
+                          "at x = {:.3f} m, y = {:.3f} m); the landing is {}",
+                          1e4 * n.zone_area_m2, 100.0 * n.best_p, n.best.x, n.best.y,
+                          n.in_zone ? "inside it" : "outside it"));
+  return lines;
+}
+
+ordered_json next_json(const plan::NextReport& n) {
+  ordered_json j;
+  j["ball"] = n.ball;
+  j["pocket"] = n.pocket_name;
+  j["p"] = n.p;
+  j["cut_deg"] = n.cut_deg;
+  j["cut_side"] = n.cut_side > 0 ? "left" : n.cut_side < 0 ? "right" : "straight";
+  j["thickness"] = n.thickness;
+  j["distance_m"] = n.distance_m;
+  j["screened_by"] = n.screened_by.empty() ? ordered_json() : ordered_json(n.screened_by);
+  j["zone_area_m2"] = n.zone_area_m2;
+  j["in_zone"] = n.in_zone;
+  j["best_p"] = n.best_p;
+  j["best"] = point_json(n.best);
+  j["landing"] = point_json(n.landing);
+  j["words"] = n.words;
+  return j;
 }
 
 ordered_json pot_json(const plan::PotReport& pot) {
@@ -249,6 +285,7 @@ ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot&
   j["impact_method"] = phys::to_string(p.impact_method);
   j["failure"] = {{"condition", prob::to_string(p.failure)}, {"reason", p.failure_reason}};
   if (p.pot) j["pot"] = pot_json(*p.pot);
+  if (p.next) j["next"] = next_json(*p.next);
   return j;
 }
 

@@ -49,6 +49,11 @@ std::vector<std::pair<std::string, std::string>> pot_lines(const planner::PotRep
 // {ball, pocket, made, striker, cut_deg, cut_side, thickness, throw_deg, ghost_aim_deg,
 // aim_allowance_deg, margin_m, aim_margin_deg}.
 nlohmann::ordered_json pot_json(const planner::PotReport& pot);
+// Position play: what the landing leaves for the next pot, as report lines (next, zone).
+std::vector<std::pair<std::string, std::string>> next_lines(const planner::NextReport& next);
+// {ball, pocket, p, cut_deg, cut_side, thickness, distance_m, screened_by, zone_area_m2,
+// in_zone, best_p, best, landing, words}.
+nlohmann::ordered_json next_json(const planner::NextReport& next);
 
 // The stroke as `cueplan solve --json` reports a shot: shot {speed, aim_deg, topspin_k,
 // sidespin_k, elevation_deg, squirt_deg}, tip_offset, stroke, outcome, final_position, miss_distance (null unless at

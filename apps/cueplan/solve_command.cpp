@@ -14,6 +14,7 @@
 #include "cueplan/draw/table.hpp"
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/position.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
 #include "exit_codes.hpp"
@@ -100,8 +101,12 @@ void write_text(std::ostream& out, const prob::Problem& problem,
     line("target", "x = " + number(problem.target.x, "m") + ", y = " +
                        number(problem.target.y, "m") + ", tolerance " +
                        number(problem.tolerance, "m"));
+  else if (!problem.next.empty())
+    line("target", "none: position for the next pot, the cue ball may stop anywhere");
   else
     line("target", "none: a pure pot, the cue ball may stop anywhere");
+  if (b.next)
+    for (const auto& [label, text] : next_lines(*b.next)) line(label, text);
   line("miss distance", miss_text(problem, b));
   line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
@@ -223,7 +228,11 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
                 {"success_probability", "fraction of noisy strokes, 0..1 (= success.both.p)"},
                 {"success",
                  "fractions of noisy strokes, 0..1: p with its 95 % Wilson interval [low, high] "
-                 "over `samples` strokes; position is given the pot (all strokes without one)"},
+                 "over `samples` strokes; position is given the pot (all strokes without one); "
+                 "next (problems with next): the mean P(next pot) from the landings of the "
+                 "strokes that pot, its interval widened by the position field's allowance"},
+                {"next", "position play: ball, pocket, p (P(next pot) from the landing), cut_deg, "
+                         "distance_m (m, cue ball to the next ball), zone_area_m2 (m^2), in_zone"},
                 {"time_s", "s"},
                 {"max_cushion_normal_speed", "m/s"},
                 {"noise", "standard deviations: aim deg, speed m/s, tip_offset m"}};
@@ -258,6 +267,21 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
                             const plan::PlanResult& r) {
   const plan::PlannedShot& b = r.best;
   draw::TableScene d = draw::problem_table(problem);
+  if (r.position_field && r.position_field->best_value() > 0.0) {
+    // Position play: the next pot's zone, outlined over the cloth (cueplan zone shades it).
+    const plan::PositionField& f = *r.position_field;
+    draw::TableField zone;
+    zone.cell = f.cell();
+    zone.columns = f.columns();
+    zone.rows = f.rows();
+    for (int j = 0; j < zone.rows; ++j)
+      for (int i = 0; i < zone.columns; ++i) zone.values.push_back(f.cell_value(i, j));
+    zone.shade = false;
+    zone.outline_level = f.zone_threshold();
+    zone.outline_legend = fmt::format("zone for the {}: P(next pot) within 10 points of the best",
+                                      problem.next.front().ball);
+    d.field = std::move(zone);
+  }
   for (const plan::PlannedShot& a : r.alternatives)
     d.balls.front().paths.push_back(path_of(problem, a, options.simulation, true));
   d.balls.front().paths.push_back(path_of(problem, b, options.simulation, false));
@@ -269,6 +293,13 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
     draw::DrawnBall drawn{ball.name, draw::ball_colour(ball.name).value_or(draw::Colour{0.85, 0.55, 0.2}),
                           ball.start, {}};
     if (!ball.path.empty()) drawn.paths.push_back({ball.path, ball.events, false});
+    // problem_table drew it where it stands: give that one its path rather than a twin.
+    auto same = std::find_if(d.balls.begin(), d.balls.end(),
+                             [&](const draw::DrawnBall& shown) { return shown.name == ball.name; });
+    if (same != d.balls.end()) {
+      same->paths = std::move(drawn.paths);
+      continue;
+    }
     d.balls.push_back(std::move(drawn));
   }
   if (!r.alternatives.empty())
@@ -288,7 +319,10 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
                 tip_offset_words(b.shot).c_str());
   d.caption.push_back(buf);
   std::string outcome;
-  if (std::isfinite(b.miss_distance)) {
+  if (!problem.has_target && b.outcome == phys::ShotStatus::rest) {
+    outcome = fmt::format("Stops at x = {:.3f} m, y = {:.3f} m after {}", b.final_position.x,
+                          b.final_position.y, route_text(problem.scene, b.route));
+  } else if (std::isfinite(b.miss_distance)) {
     buf = fmt::format("Stops {:.3g} mm from the target after {}",
                   1000.0 * b.miss_distance, route_text(problem.scene, b.route).c_str());
     outcome = buf;
@@ -340,8 +374,10 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   CLI::Option* json = c.add_flag("--json", args_.json,
              "Print one JSON object instead of text: status, message, shot {speed, aim_deg, "
              "topspin_k, sidespin_k}, final_position, miss_distance, success_probability, "
-             "success {pot (pot problems), position, both: {p, low, high, samples}}, pot {ball, "
-             "pocket, cut_deg, thickness, throw_deg, margin_m, aim_margin_deg, ...}, failure, "
+             "success {pot (pot problems), position, next (with next), both: {p, low, high, "
+             "samples}}, pot {ball, pocket, cut_deg, thickness, throw_deg, margin_m, "
+             "aim_margin_deg, ...}, next {ball, pocket, p, cut_deg, distance_m, zone_area_m2, "
+             "in_zone, ...} (with next), failure, "
              "evaluations, time_s, alternatives (same shape), constraints, ...")
       ->group(output);
   CLI::Option* svg =

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "canvas.hpp"
+#include "cueplan/draw/spin_map.hpp"
 #include "label_placer.hpp"
 #include "legend.hpp"
 #include "palette.hpp"
@@ -36,6 +37,7 @@ using detail::VAnchor;
 //   table_bed    rail, cushions, cloth and its metre grid
 //   markings     snooker's baulk line, D and spots, or the diamonds on the rails
 //   pockets      holes and their jaws cut into the cushions
+//   field        a quantity over the cloth, shaded, and its zone outlined
 //   target_zone  the landing circle
 //   paths        faint alternatives, then every ball's paths (offset where they retrace
 //                an earlier one) with direction arrows
@@ -218,6 +220,18 @@ std::vector<PlacedPath> place_paths(const TableScene& scene, const Layout& l, do
 }
 
 // ---------------------------------------------------------------------------
+// The field's shades and the zone's outline (stage field and the legend).
+constexpr int kFieldLevels = 20;     // shades of the field (runs of equal shade merge)
+constexpr double kFieldAlpha = 0.7;  // over the cloth
+// Opaque: the viridis shade laid over the cloth at kFieldAlpha (translucent cells would
+// show seams where they meet).
+Colour field_colour(int level) {
+  const Colour v = viridis(level / double(kFieldLevels));
+  const auto mix = [](double a, double b) { return (1.0 - kFieldAlpha) * a + kFieldAlpha * b; };
+  return Colour{mix(kCloth.r, v.r), mix(kCloth.g, v.g), mix(kCloth.b, v.b), 1.0};
+}
+Colour zone_ink() { return Colour::hex("#ffffff"); }
+
 // Symbols shared by the table and its legend.
 
 void draw_ball(Canvas& c, double x, double y, double r, Colour colour, const char* role) {
@@ -377,6 +391,20 @@ std::vector<detail::LegendEntry> legend_entries(const TableScene& scene, const L
                        },
                        scene.dots_legend});
   }
+  if (scene.field && scene.field->shade && !scene.field->shade_legend.empty())
+    entries.push_back({[](Canvas& c, double x, double y) {
+                         for (int k = 0; k < 5; ++k)
+                           c.fill(Path().rect(x - 12.5 + 5.0 * k, y - 5.0, 5.0, 10.0),
+                                  field_colour((k + 1) * kFieldLevels / 5), "legend-symbol");
+                       },
+                       scene.field->shade_legend});
+  if (scene.field && scene.field->outline_level && !scene.field->outline_legend.empty())
+    entries.push_back({[](Canvas& c, double x, double y) {
+                         const Path box = Path().rect(x - 10.0, y - 6.0, 20.0, 12.0);
+                         c.stroke(box, Pen{detail::ink(), 3.2}, "legend-symbol");
+                         c.stroke(box, Pen{zone_ink(), 1.6}, "legend-symbol");
+                       },
+                       scene.field->outline_legend});
   if (scene.target)
     entries.push_back({[](Canvas& c, double x, double y) {
                          draw_target(c, x, y, 6.0, 6.0, "legend-symbol");
@@ -717,6 +745,57 @@ void pockets(Canvas& c, const Layout& l, const phys::Scene& scene) {
     const Point at = l.f.at(p.centre);
     c.stroke(Path().circle(at.x, at.y, pocket_radius_px(p, l)),
              Pen{kPocket.with_alpha(0.45), 1.0, {2.0, 2.0}}, "pocket-capture");
+  }
+  c.unclip();
+}
+
+// ---------------------------------------------------------------------------
+// Stage: field
+
+
+void field(Canvas& c, const Layout& l, const TableScene& scene) {
+  if (!scene.field) return;
+  const TableField& f = *scene.field;
+  if (f.columns <= 0 || f.rows <= 0 || f.values.size() != size_t(f.columns) * size_t(f.rows)) return;
+  const auto at = [&](int i, int j) { return finite_or(f.values[size_t(j) * size_t(f.columns) + size_t(i)], 0.0); };
+  c.clip(Path().rect(l.cloth.left, l.cloth.top, l.cloth.width(), l.cloth.height()));
+  if (f.shade) {
+    // Each row's runs of one shade as one rectangle; 0 is left as cloth.
+    for (int j = 0; j < f.rows; ++j) {
+      int i = 0;
+      while (i < f.columns) {
+        const int level = int(std::lround(std::clamp(at(i, j), 0.0, 1.0) * kFieldLevels));
+        int e = i + 1;
+        while (e < f.columns && int(std::lround(std::clamp(at(e, j), 0.0, 1.0) * kFieldLevels)) == level) ++e;
+        if (level > 0) {
+          const double x0 = l.f.x(i * f.cell), x1 = l.f.x(e * f.cell);
+          const double y0 = l.f.y((j + 1) * f.cell), y1 = l.f.y(j * f.cell);
+          c.fill(Path().rect(x0 - 0.25, y0 - 0.5, x1 - x0 + 0.5, y1 - y0 + 0.5), field_colour(level), "field");
+        }
+        i = e;
+      }
+    }
+  }
+  if (f.outline_level) {
+    // The zone's edge: every cell side between a cell in it and one out of it (or the
+    // grid's border), drawn dark under white so that it reads on any shade.
+    const double level = *f.outline_level;
+    const auto in = [&](int i, int j) {
+      return i >= 0 && j >= 0 && i < f.columns && j < f.rows && at(i, j) >= level;
+    };
+    Path edge;
+    for (int j = 0; j < f.rows; ++j)
+      for (int i = 0; i < f.columns; ++i) {
+        if (!in(i, j)) continue;
+        const double x0 = l.f.x(i * f.cell), x1 = l.f.x((i + 1) * f.cell);
+        const double y0 = l.f.y((j + 1) * f.cell), y1 = l.f.y(j * f.cell);
+        if (!in(i - 1, j)) edge.move_to(x0, y0).line_to(x0, y1);
+        if (!in(i + 1, j)) edge.move_to(x1, y0).line_to(x1, y1);
+        if (!in(i, j - 1)) edge.move_to(x0, y1).line_to(x1, y1);
+        if (!in(i, j + 1)) edge.move_to(x0, y0).line_to(x1, y0);
+      }
+    c.stroke(edge, Pen{detail::ink(), 3.2}, "zone-edge");
+    c.stroke(edge, Pen{zone_ink(), 1.6}, "zone-edge");
   }
   c.unclip();
 }
@@ -1075,9 +1154,16 @@ TableScene problem_table(const problems::Problem& problem) {
   t.balls.push_back({"cue ball", *ball_colour("cue ball"), problem.cue_ball, {}});
   for (const phys::ObjectBall& b : problem.scene.balls)
     t.balls.push_back({b.name, ball_colour(b.name).value_or(other_ball_colour()), b.position, {}});
-  for (size_t i = 0; i < problem.scene.obstacles.size(); ++i)
+  for (size_t i = 0; i < problem.scene.obstacles.size(); ++i) {
+    if (i < problem.obstacle_names.size()) {
+      const std::string& name = problem.obstacle_names[i];
+      t.balls.push_back({name, ball_colour(name).value_or(*ball_colour("red")),
+                         problem.scene.obstacles[i], {}});
+      continue;
+    }
     t.balls.push_back(
         {fmt::format("obstacle {}", i + 1), *ball_colour("red"), problem.scene.obstacles[i], {}});
+  }
   return t;
 }
 
@@ -1094,6 +1180,7 @@ std::shared_ptr<Canvas> draw_table(const TableScene& scene, const TableStyle& st
   table_bed(c, l);
   markings(c, l, scene);
   pockets(c, l, scene.scene);
+  field(c, l, scene);
   target_zone(c, l, scene);
   paths(c, l, scene, placed, style);
   dots(c, l, scene);

@@ -39,6 +39,7 @@
 
 #include "cueplan/physics/parallel.hpp"
 #include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/position.hpp"
 #include "nlopt_stage.hpp"
 #include "ompl_stage.hpp"
 #include "outcome.hpp"
@@ -129,7 +130,7 @@ class NominalObjective {
   double operator()(const double* u) {
     physics::Shot shot;
     const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &evaluations_);
-    const double f = detail::shot_score(task_.problem, r, enforce_rigid_limit_);
+    const double f = detail::shot_score(task_.problem, r, enforce_rigid_limit_) + task_.next_score(r);
     last_ = {f, r.final_position, r.status == physics::ShotStatus::rest};
     if (f < best_.score) best_ = {shot, f};
     best_history_.push_back(best_.score);
@@ -182,7 +183,8 @@ class RobustObjective {
   double operator()(const double* u) {
     physics::Shot shot;
     const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &simulations_);
-    const double nominal = detail::shot_score(task_.problem, r, options_.enforce_rigid_limit);
+    const double nominal =
+        detail::shot_score(task_.problem, r, options_.enforce_rigid_limit) + task_.next_score(r);
     const double tol = task_.problem.tolerance;
     const double outside = std::max(0.0, nominal - 0.8 * tol) / tol;
     const double f = 1.0 - detail::soft_success(task_, shot, draws_, options_.noise,
@@ -292,7 +294,14 @@ class Planning {
 
   PlanResult run() {
     if (check()) {
-      const Task task(problem_, options_.solve_pot_aim);
+      Task task(problem_, options_.solve_pot_aim);
+      if (!problem_.next.empty()) {
+        task.next_field = options_.position_cache
+                              ? options_.position_cache->get(problem_, options_.noise)
+                              : std::make_shared<const PositionField>(
+                                    PositionField::for_problem(problem_, options_.noise));
+        result_.position_field = task.next_field;
+      }
       global_stage(task);
       polish_stage(task);
       verify_stage(task);
@@ -482,7 +491,7 @@ class Planning {
     ++*simulations;
     Final f;
     f.shot = detail::describe_outcome(problem_, shot, r, options_.enforce_rigid_limit);
-    f.score = detail::shot_score(problem_, r, options_.enforce_rigid_limit);
+    f.score = detail::shot_score(problem_, r, options_.enforce_rigid_limit) + task.next_score(r);
     return f;
   }
   Final described(const Task& task, const physics::Shot& shot) {
@@ -789,6 +798,12 @@ class Planning {
                                     &result.evaluations);
       }
     }
+    if (task.next_field) {
+      // What each reported stroke leaves for the next pot, from where it stops.
+      result.best.next = next_report(problem_, *task.next_field, result.best.final_position);
+      for (PlannedShot& a : result.alternatives)
+        a.next = next_report(problem_, *task.next_field, a.final_position);
+    }
     const PlannedShot& best = result.best;
     std::string where = fmt::format("{} ({}) stops {} from the target (tolerance {})", best.family,
                                     describe_stroke(best.shot), mm(best.miss_distance), mm(tol));
@@ -813,10 +828,16 @@ class Planning {
             " and succeeds in {:.0f} % of strokes with a player's error (95 % interval {:.0f}-{:.0f} "
             "%)",
             100.0 * e.p, 100.0 * e.low, 100.0 * e.high);
-      if (e.samples > 0 && best.success.pot && problem_.has_target)
+      if (e.samples > 0 && best.success.pot && (problem_.has_target || best.success.next))
         result.message += fmt::format("; the pot alone {:.0f} % ({:.0f}-{:.0f} %)",
                                       100.0 * best.success.pot->p, 100.0 * best.success.pot->low,
                                       100.0 * best.success.pot->high);
+      if (e.samples > 0 && best.success.next)
+        result.message += fmt::format("; the next pot ({} into the {}) {:.0f} % ({:.0f}-{:.0f} %)",
+                                      problem_.next.front().ball,
+                                      problems::pocket_name(problem_.scene, problem_.next.front().pocket),
+                                      100.0 * best.success.next->p, 100.0 * best.success.next->low,
+                                      100.0 * best.success.next->high);
       result.message += ".";
       if (!result.alternatives.empty())
         result.message += fmt::format(" {} other way{} found.", result.alternatives.size(),

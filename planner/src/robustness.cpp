@@ -108,7 +108,9 @@ double soft_success(const Task& task, const physics::Shot& shot,
     // A Cauchy kernel: 1 on the target, 1/2 at the tolerance, and still telling near
     // misses from wide ones a few tolerances out, where most noisy strokes land.
     const double x = problems::miss_distance(problem, r) / problem.tolerance;
-    sum += 1.0 / (1.0 + x * x);
+    // Position play: weighed by the landing's value for the next pot.
+    const double next = task.next_field ? task.next_field->value(r.final_position) : 1.0;
+    sum += next / (1.0 + x * x);
   }
   return sum / static_cast<double>(draws.size());
 }
@@ -119,9 +121,32 @@ Success estimate_success(const problems::Problem& problem, const physics::Shot& 
                          const NoiseModel& noise, int samples, uint64_t seed,
                          const physics::SimulationOptions& simulation) {
   if (samples <= 0 || noise.validate()) return {};
-  const detail::Task task(problem);
+  detail::Task task(problem);
+  if (!problem.next.empty())
+    task.next_field = std::make_shared<const PositionField>(PositionField::for_problem(problem, noise));
   return detail::sample_success(task, shot, detail::noise_draws(samples, seed), noise, simulation)
       .success;
+}
+
+std::vector<NoisyLanding> noisy_landings(const problems::Problem& problem, const physics::Shot& shot,
+                                         const NoiseModel& noise, int samples, uint64_t seed,
+                                         const physics::SimulationOptions& simulation) {
+  std::vector<NoisyLanding> out;
+  if (samples <= 0 || noise.validate()) return out;
+  const detail::Task task(problem);
+  physics::SimulationOptions quiet = simulation;
+  quiet.record_path = false;
+  const double radius = problem.scene.radius();
+  const double miscue = detail::miscue_limit(problem);
+  const double squirt = detail::intended_squirt_deg(problem, shot);
+  for (const detail::NoiseDraw& d : detail::noise_draws(samples, seed)) {
+    physics::Shot s;
+    if (!detail::noisy_stroke(shot, d, noise, radius, miscue, squirt, &s)) continue;
+    const physics::ShotResult r = task.simulate(s, quiet);
+    if (r.status != physics::ShotStatus::rest) continue;
+    out.push_back({r.final_position, problems::check_outcome(problem, r).pot_made()});
+  }
+  return out;
 }
 
 double success_probability(const problems::Problem& problem, const physics::Shot& shot,
@@ -150,14 +175,32 @@ Estimate wilson_estimate(int successes, int samples) {
 
 namespace detail {
 
-uint8_t judge(const Task& task, const physics::ShotResult& result) {
+double next_uniform(size_t draw) {
+  return static_cast<double>(stream_seed(0x6e657874ULL, draw) >> 11) * 0x1.0p-53;  // "next"
+}
+
+uint8_t judge(const Task& task, const physics::ShotResult& result, size_t draw, float* next_p) {
   const problems::Verdict v = problems::check_outcome(task.problem, result);
+  if (next_p) *next_p = 0.0f;
+  if (task.next_field && v.pot_made()) {
+    // Position play: the next pot from where the cue ball stops, drawn by this draw's
+    // uniform (the same for every stroke: paired comparisons stay paired).
+    uint8_t bits = kPotted;
+    if (v.solves()) {
+      bits |= kOnTarget;
+      const PositionField& field = *task.next_field;
+      if (next_p) *next_p = static_cast<float>(field.next_shot(result.final_position).p);
+      if (next_uniform(draw) < field.value(result.final_position)) bits |= kPositioned;
+    }
+    return bits;
+  }
   if (v.solves()) return kSucceeded;
   // Without a pot there is nothing to pot: every stroke played counts as potting.
   return !task.problem.pot || v.pot_made() ? kPotted : 0;
 }
 
-Success success_of(const Task& task, const std::vector<uint8_t>& outcomes) {
+Success success_of(const Task& task, const std::vector<uint8_t>& outcomes,
+                   const std::vector<float>& next_p) {
   int potted = 0, both = 0;
   for (uint8_t o : outcomes) {
     potted += (o & kPotted) != 0;
@@ -173,6 +216,33 @@ Success success_of(const Task& task, const std::vector<uint8_t>& outcomes) {
   // P(pot) over every stroke; P(position | pot) over the strokes that potted.
   s.pot = wilson_estimate(potted, n);
   s.position = wilson_estimate(both, potted);
+  if (task.next_field) {
+    // Position: the target alone; next: the mean P(next pot) over the strokes that left
+    // the cue ball on the target after the pot, its normal interval widened by the
+    // closed form's allowance.
+    int on_target = 0;
+    double sum = 0.0, sum2 = 0.0;
+    for (size_t i = 0; i < outcomes.size(); ++i) {
+      if ((outcomes[i] & kOnTarget) == 0) continue;
+      ++on_target;
+      const double q = i < next_p.size() ? next_p[i] : 0.0;
+      sum += q;
+      sum2 += q * q;
+    }
+    s.position = wilson_estimate(on_target, potted);
+    Estimate next;
+    next.samples = on_target;
+    next.successes = static_cast<int>(std::lround(sum));
+    if (on_target > 0) {
+      const double m = on_target;
+      next.p = sum / m;
+      const double var = std::max(0.0, sum2 / m - next.p * next.p);
+      const double half = 1.959963984540054 * std::sqrt(var / m) + kFieldError;
+      next.low = std::max(0.0, next.p - half);
+      next.high = std::min(1.0, next.p + half);
+    }
+    s.next = next;
+  }
   return s;
 }
 
@@ -196,17 +266,22 @@ void extend_sample(const Task& task, const physics::Shot& shot, std::span<const 
   const bool timed = deadline != Clock::time_point::max();
   std::vector<uint8_t>& outcomes = sampled->outcomes;
   outcomes.reserve(draws.size());
+  std::vector<float>& next_p = sampled->next_p;
+  next_p.resize(outcomes.size(), 0.0f);
   for (size_t i = outcomes.size(); i < draws.size(); ++i) {
     if (timed && Clock::now() >= deadline) break;
     physics::Shot s;
     if (!noisy_stroke(shot, draws[i], noise, radius, miscue, squirt, &s)) {
       outcomes.push_back(0);  // a miscue fails every condition
+      next_p.push_back(0.0f);
       continue;
     }
-    outcomes.push_back(judge(task, task.simulate(s, quiet)));
+    float q = 0.0f;
+    outcomes.push_back(judge(task, task.simulate(s, quiet), i, &q));
+    next_p.push_back(q);
     ++sampled->simulations;
   }
-  sampled->success = success_of(task, outcomes);
+  sampled->success = success_of(task, outcomes, next_p);
 }
 
 }  // namespace detail

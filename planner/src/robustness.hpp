@@ -72,15 +72,25 @@ double soft_success(const Task& task, const physics::Shot& shot,
 inline constexpr uint8_t kPotted = 1;
 inline constexpr uint8_t kPositioned = 2;
 inline constexpr uint8_t kSucceeded = kPotted | kPositioned;
+// Position play (task.next_field): kPositioned means the target held (or there is none)
+// and the next pot, drawn as made with the landing's value, was made; kOnTarget the
+// target alone.
+inline constexpr uint8_t kOnTarget = 4;
 
-// The outcome bits of a stroke's simulated result on the task's problem.
-uint8_t judge(const Task& task, const physics::ShotResult& result);
+// The outcome bits of a stroke's simulated result on the task's problem; `draw` is the
+// index of the noise draw (position play draws the next pot by it: common numbers).
+// *next_p, when given, is P(next pot) from the landing (0 unless pot and target held).
+uint8_t judge(const Task& task, const physics::ShotResult& result, size_t draw = 0,
+              float* next_p = nullptr);
+// The uniform in [0, 1) a draw's next pot is decided by.
+double next_uniform(size_t draw);
 
 // A Monte Carlo estimate draw by draw: outcomes[i] is what the noisy stroke of draws[i]
 // did, for the draws simulated before the deadline (a prefix of them), so two strokes
 // sampled with the same draws can be compared pair by pair (common random numbers).
 struct Sampled {
   std::vector<uint8_t> outcomes;
+  std::vector<float> next_p;  // position play: P(next pot) from each draw's landing
   Success success;
   int simulations = 0;  // strokes simulated (a miscue is not simulated)
 };
@@ -96,6 +106,8 @@ void extend_sample(const Task& task, const physics::Shot& shot, std::span<const 
                    Clock::time_point deadline, Sampled* sampled);
 
 // The success of a set of outcome bits (all of them, in order).
-Success success_of(const Task& task, const std::vector<uint8_t>& outcomes);
+// With position play, `next_p` (one per outcome) gives success.next.
+Success success_of(const Task& task, const std::vector<uint8_t>& outcomes,
+                   const std::vector<float>& next_p = {});
 
 }  // namespace cueplan::planner::detail

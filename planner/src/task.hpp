@@ -2,9 +2,11 @@
 // its scene compiled, so the thousands of simulations that follow check nothing again.
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/planner/position.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "pot_aim.hpp"
 
@@ -35,6 +37,19 @@ struct Task {
   const physics::CompiledScene scene;
   // A pot problem's aim solver (the aim is solved, not searched); empty without a pot.
   std::optional<PotAim> pot_aim;
+  // Position play (problem.next): the field the landings are judged by; null without
+  // a next pot (set by the planner after construction, from its cache).
+  std::shared_ptr<const PositionField> next_field;
+
+  // The position term of the nominal score: for a problem with a next pot and no target,
+  // tolerance x (1 - value / best value) at a landing that pots cleanly (else 0), so that
+  // the search steers the cue ball toward the zone as it steers it toward a target.
+  double next_score(const physics::ShotResult& result) const {
+    if (!next_field || problem.has_target || result.status != physics::ShotStatus::rest) return 0.0;
+    const double best = next_field->best_value();
+    if (!(best > 0.0)) return 0.0;
+    return problem.tolerance * (1.0 - std::min(1.0, next_field->value(result.final_position) / best));
+  }
 };
 
 }  // namespace cueplan::planner::detail

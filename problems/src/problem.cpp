@@ -153,6 +153,33 @@ Validation validate(const Problem& p) {
                    fmt::format("names no object ball on the table: \"{}\"", *p.first_contact));
   if (!p.has_target && !p.pot)
     return invalid({"target"}, "is required unless the problem has a pot");
+  if (!p.next.empty() && !p.pot)
+    return invalid({"next"}, "needs a pot: the next pot is played after this stroke's pot");
+  if (p.next.size() > static_cast<size_t>(kMostNextPots))
+    return invalid({"next"}, fmt::format("may list at most {} pots", kMostNextPots),
+                   static_cast<int>(p.next.size()));
+  for (size_t i = 0; i < p.next.size(); ++i) {
+    const NextPot& n = p.next[i];
+    // The file's path: next.ball for a single pot, next[i].ball in a list.
+    const physics::FieldPath at = p.next.size() == 1 && !p.next_is_list
+                                      ? physics::FieldPath{"next"}
+                                      : physics::FieldPath{"next", static_cast<int>(i)};
+    if (!is_ball(n.ball))
+      return invalid(at / "ball", fmt::format("names no object ball on the table: \"{}\"", n.ball));
+    if (p.pot && n.ball == p.pot->ball)
+      return invalid(at / "ball",
+                     fmt::format("names the pot's own ball \"{}\", which this stroke pots", n.ball));
+    for (size_t j = 0; j < i; ++j)
+      if (p.next[j].ball == n.ball)
+        return invalid(at / "ball", fmt::format("names \"{}\" a second time", n.ball));
+    if (n.pocket < 0 || n.pocket >= static_cast<int>(p.scene.pockets.size()))
+      return invalid(at / "pocket",
+                     p.scene.pockets.empty() ? "names a pocket, but the table has none"
+                                             : "names no pocket of this table",
+                     n.pocket);
+  }
+  if (!p.obstacle_names.empty() && p.obstacle_names.size() != p.scene.obstacles.size())
+    return invalid({"obstacles"}, "names some obstacles but not all");
   return {};
 }
 
@@ -221,6 +248,9 @@ std::string describe(const Problem& p) {
                     s.ball_contact.mu_ball, s.ball_contact.restitution);
   }
   if (p.pot) text += fmt::format("\n  pot {} into {}", p.pot->ball, pocket_name(s, p.pot->pocket));
+  for (size_t i = 0; i < p.next.size(); ++i)
+    text += fmt::format("\n  {} {} into {}", i == 0 ? "then" : "and then", p.next[i].ball,
+                        pocket_name(s, p.next[i].pocket));
   if (p.first_contact) text += fmt::format("; first contact {}", *p.first_contact);
   const Limits& l = p.limits;
   text += fmt::format("\n  limits: speed {:.4g}-{:.4g} m/s, spin <= {:.4g}, {}, ", l.speed_min, l.speed_max,

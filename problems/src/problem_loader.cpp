@@ -304,9 +304,63 @@ void read_pot(const Mapping& root, FieldLines& lines, Problem& problem) {
     problem.first_contact = read_ball_name(*field, scene);
 }
 
-void read_obstacles(const Mapping& root, physics::Scene& scene, FieldLines& lines) {
+// A pocket's name (kPocketNames) as its index; the table must have pockets.
+int read_pocket(const Field& pocket, const physics::Scene& scene) {
+  const std::string name = detail::one_of(
+      pocket, std::vector<std::string_view>(std::begin(kPocketNames), std::end(kPocketNames)));
+  if (scene.pockets.empty())
+    detail::fail(pocket, "names the " + name + " pocket, but the table has none (table.pockets: none)");
+  return static_cast<int>(
+      std::find(std::begin(kPocketNames), std::end(kPocketNames), std::string_view(name)) -
+      std::begin(kPocketNames));
+}
+
+// next: {ball: NAME, pocket: POCKET}, or a list of up to kMostNextPots of them: the pots
+// to be played after this one, in order (position play). Needs `pot`.
+void read_next(const Mapping& root, FieldLines& lines, Problem& problem) {
+  const std::optional<Field> field = root.find("next");
+  if (!field) return;
+  const physics::Scene& scene = problem.scene;
+  if (!problem.pot)
+    detail::fail(*field, "needs a pot: the next pot is played after this stroke's pot (add pot:)");
+  const auto one = [&](const Field& f) {
+    if (!f.value.IsMap())
+      detail::fail(f, "must be {ball: NAME, pocket: POCKET}, got " + detail::describe_value(f.value));
+    const Mapping m(f, {"ball", "pocket"}, lines);
+    NextPot n;
+    n.ball = read_ball_name(m.require("ball", "the object ball to pot next, a name in balls"), scene);
+    n.pocket = read_pocket(m.require("pocket", "the pocket to pot it in (bottom_left, ...)"), scene);
+    problem.next.push_back(n);
+  };
+  if (field->value.IsSequence()) {
+    problem.next_is_list = true;
+    const std::vector<Field> items = detail::sequence(
+        *field, 0, "a list of up to 3 pots {ball: NAME, pocket: POCKET}, in the order played");
+    if (items.empty() || items.size() > static_cast<size_t>(kMostNextPots))
+      detail::fail(*field, "must list 1 to 3 pots {ball: NAME, pocket: POCKET}, got " +
+                               std::to_string(items.size()));
+    for (const Field& item : items) {
+      lines[item.path] = item.line;
+      one(item);
+    }
+  } else {
+    one(*field);
+  }
+}
+
+void read_obstacles(const Mapping& root, Problem& problem, FieldLines& lines) {
+  physics::Scene& scene = problem.scene;
   const std::optional<Field> field = root.find("obstacles");
   if (!field) return;
+  // Named: a mapping from each obstacle's name to its centre, like balls.
+  if (field->value.IsMap()) {
+    const Mapping named(*field, {}, lines);
+    for (const auto& [name, position] : named.entries()) {
+      scene.obstacles.push_back(detail::point(position));
+      problem.obstacle_names.push_back(name);
+    }
+    return;
+  }
   for (const Field& obstacle : detail::sequence(*field, 0, "a list of points [x, y] in m")) {
     lines[obstacle.path] = obstacle.line;
     scene.obstacles.push_back(detail::point(obstacle));
@@ -436,7 +490,7 @@ Problem read_problem(const Field& document, const std::string& source) {
   const Mapping root(
       document,
       {"name", "table", "ball", "physics", "cue_ball", "target", "tolerance", "obstacles", "balls",
-       "limits", "max_strokes", "time_budget_s", "pot", "first_contact", "cue"},
+       "limits", "max_strokes", "time_budget_s", "pot", "first_contact", "cue", "next"},
       lines);
   Problem problem;
   problem.source = source;
@@ -451,7 +505,7 @@ Problem read_problem(const Field& document, const std::string& source) {
   build_pockets(pockets, lines, scene);
   read_physics(root, lines, scene);
   read_cue(root, lines, scene);
-  read_obstacles(root, scene, lines);
+  read_obstacles(root, problem, lines);
   read_balls(root, lines, scene);
   problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m");
   // With a pot the target may be left out: a pure pot, the cue ball free to stop anywhere.
@@ -468,6 +522,7 @@ Problem read_problem(const Field& document, const std::string& source) {
   if (const std::optional<Field> f = root.find("time_budget_s"))
     problem.time_budget_s = detail::positive_number(*f);
   read_pot(root, lines, problem);
+  read_next(root, lines, problem);
   // A pot may be played with or without cushions: [0, 3] unless the file says otherwise.
   const std::optional<Field> limits = root.find("limits");
   if (problem.pot && !(limits && limits->value.IsMap() && limits->value["cushions"]))

@@ -908,3 +908,47 @@ TEST(Plot, NonFiniteValuesBreakTheLine) {
 
 }  // namespace
 }  // namespace cueplan::draw
+
+namespace cueplan::draw {
+namespace {
+
+// A field over the cloth (cueplan zone): shaded cells, the zone's edge where values
+// cross the level, legend entries for both; outline only when not shaded; named
+// obstacles keep their names and colours.
+TEST(Table, FieldIsShadedAndItsZoneOutlined) {
+  const prob::LoadResult r = prob::parse_problem(
+      "obstacles: {pink: [2.7, 0.9], blue: [1.78, 0.9]}\ncue_ball: [1, 1]\ntarget: [2, 1.3]\n",
+      "<field>");
+  ASSERT_TRUE(r.ok()) << r.error;
+  TableScene t = problem_table(*r.problem);
+  ASSERT_EQ(t.balls.size(), 3u);
+  EXPECT_EQ(t.balls[1].name, "pink");
+  EXPECT_EQ(t.balls[1].colour.to_hex(), ball_colour("pink")->to_hex());
+  TableField f;
+  f.cell = 0.1;
+  f.columns = 36;
+  f.rows = 18;
+  for (int j = 0; j < f.rows; ++j)
+    for (int i = 0; i < f.columns; ++i)
+      f.values.push_back(std::max(0.0, 1.0 - std::hypot(i - 10.0, j - 9.0) / 8.0));
+  f.outline_level = 0.8;
+  f.shade_legend = "P(next pot)";
+  f.outline_legend = "zone";
+  t.field = f;
+  const Picture shaded = table_picture(t);
+  EXPECT_GT(count(shaded, "field"), 10u);
+  EXPECT_EQ(count(shaded, "zone-edge"), 2u);  // dark under white
+  const Box edge = shaded.marks_of("zone-edge").front().box;
+  const Box cloth = shaded.marks_of("cloth").front().box;
+  EXPECT_TRUE(edge.inside(cloth));
+  EXPECT_LT(edge.width(), 0.3 * cloth.width());  // the zone, not the table
+  EXPECT_TRUE(has_text(shaded, "legend-text", "P(next pot)"));
+  EXPECT_TRUE(has_text(shaded, "legend-text", "zone"));
+  t.field->shade = false;
+  const Picture outlined = table_picture(t);
+  EXPECT_EQ(count(outlined, "field"), 0u);
+  EXPECT_EQ(count(outlined, "zone-edge"), 2u);
+}
+
+}  // namespace
+}  // namespace cueplan::draw

@@ -394,6 +394,34 @@ TEST(ProblemValues, ObjectBallsPotAndBallPhysicsReachTheirFields) {
   EXPECT_FALSE(bare.first_contact.has_value());
 }
 
+TEST(ProblemValues, NextPotsAndNamedObstaclesReachTheirFields) {
+  // One next pot: the target may be left out (position play on the black).
+  const Problem one = parse_ok(
+      "balls: {red3: [1.5, 0.9], black: [3.2, 0.9]}\npot: {ball: red3, pocket: top_left}\n"
+      "next: {ball: black, pocket: top_right}\ncue_ball: [1, 1]\n");
+  EXPECT_FALSE(one.has_target);
+  ASSERT_EQ(one.next.size(), 1u);
+  EXPECT_EQ(one.next[0].ball, "black");
+  EXPECT_EQ(pocket_name(one.scene, one.next[0].pocket), "top_right");
+  EXPECT_NE(describe(one).find("then black into top_right"), std::string::npos) << describe(one);
+  // A list of three, in the order played; with a target as well.
+  const Problem three = parse_ok(
+      "balls: {red: [1.5, 0.9], yellow: [0.8, 0.4], green: [0.8, 1.4], brown: [0.8, 0.9]}\n"
+      "pot: {ball: red, pocket: top_left}\n"
+      "next:\n  - {ball: yellow, pocket: bottom_left}\n  - {ball: green, pocket: top_left}\n"
+      "  - {ball: brown, pocket: bottom_middle}\ncue_ball: [2, 1]\ntarget: [2.5, 1]\n");
+  EXPECT_TRUE(three.has_target);
+  ASSERT_EQ(three.next.size(), 3u);
+  EXPECT_EQ(three.next[2].ball, "brown");
+  EXPECT_EQ(three.next[2].pocket, 1);
+  // Obstacles named like balls.
+  const Problem named = parse_ok(
+      "obstacles: {pink: [2.7, 0.9], blue: [1.78, 0.9]}\ncue_ball: [1, 1]\ntarget: [2, 1.3]\n");
+  ASSERT_EQ(named.scene.obstacles.size(), 2u);
+  EXPECT_EQ(named.obstacle_names, (std::vector<std::string>{"pink", "blue"}));
+  EXPECT_DOUBLE_EQ(named.scene.obstacles[1].x, 1.78);
+}
+
 TEST(ProblemShotChecks, APotIsMadeOnlyByItsBallInItsPocket) {
   const Problem p = parse_ok("balls: {red: [1.5, 0.9]}\npot: {ball: red, pocket: top_left}\n" +
                              std::string(kPositions));
@@ -736,6 +764,41 @@ const BadInput kBadInputs[] = {
      "mean blue?)"},
     {"FirstContactWithoutBalls", "first_contact: red\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
      "first_contact", "names an object ball, but the file has no balls"},
+    {"NextWithoutAPot",
+     "balls: {red: [1.5, 0.9], black: [3.2, 0.9]}\nnext: {ball: black, pocket: top_right}\n"
+     "cue_ball: [1, 1]\ntarget: [2, 1]\n",
+     2, "next", "needs a pot"},
+    {"NextOfAnUnknownBall",
+     "balls: {red: [1.5, 0.9], black: [3.2, 0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "next: {ball: blak, pocket: top_right}\ncue_ball: [1, 1]\n",
+     3, "next.ball", "got \"blak\" (did you mean black?)"},
+    {"NextIntoAnUnknownPocket",
+     "balls: {red: [1.5, 0.9], black: [3.2, 0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "next:\n  ball: black\n  pocket: top_centre\ncue_ball: [1, 1]\n",
+     5, "next.pocket", "must be one of bottom_left"},
+    {"NextIsThePotsBall",
+     "balls: {red: [1.5, 0.9], black: [3.2, 0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "next: {ball: red, pocket: top_right}\ncue_ball: [1, 1]\n",
+     3, "next.ball", "names the pot's own ball"},
+    {"NextListTooLong",
+     "balls: {red: [1.5, 0.9], a: [3.2, 0.9], b: [3.2, 0.5], c: [2.5, 0.5], d: [2.5, 1.5]}\n"
+     "pot: {ball: red, pocket: top_left}\n"
+     "next: [{ball: a, pocket: top_right}, {ball: b, pocket: top_right}, {ball: c, pocket: "
+     "top_right}, {ball: d, pocket: top_right}]\ncue_ball: [1, 1]\n",
+     3, "next", "must list 1 to 3 pots"},
+    {"NextListRepeatsABall",
+     "balls: {red: [1.5, 0.9], black: [3.2, 0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "next:\n  - {ball: black, pocket: top_right}\n  - {ball: black, pocket: bottom_right}\n"
+     "cue_ball: [1, 1]\n",
+     5, "next[1].ball", "a second time"},
+    {"NextNotAPair",
+     "balls: {red: [1.5, 0.9], black: [3.2, 0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "next: black\ncue_ball: [1, 1]\n",
+     3, "next", "must be {ball: NAME, pocket: POCKET}"},
+    {"NextUnknownKey",
+     "balls: {red: [1.5, 0.9], black: [3.2, 0.9]}\npot: {ball: red, pocket: top_left}\n"
+     "next: {ball: black, pocket: top_right, spin: 1}\ncue_ball: [1, 1]\n",
+     3, "next.spin", "unknown key; expected one of ball, pocket"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Problems, BadProblemFile, testing::ValuesIn(kBadInputs),

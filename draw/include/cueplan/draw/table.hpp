@@ -64,6 +64,20 @@ struct TableDot {
   std::optional<Colour> outline;  // a 1 px ring; none when empty
 };
 
+// A quantity over the cloth in square cells, e.g. P(next pot) from each cue-ball position
+// (planner/position.hpp): shaded (viridis, 0 transparent) and, at `outline_level`, its
+// zone outlined like a coaching diagram (cell edges between values >= the level and
+// below it).
+struct TableField {
+  double cell = 0.02;  // m, the cells' side; cell (i, j) spans [i cell, (i + 1) cell) x ...
+  int columns = 0, rows = 0;
+  std::vector<double> values;  // row-major from y = 0: values[j * columns + i], in [0, 1]
+  bool shade = true;           // false: the outline alone (solve --svg)
+  std::optional<double> outline_level;
+  std::string shade_legend;    // e.g. "P(next pot) from each cue-ball position, 0-100 %"
+  std::string outline_legend;  // e.g. "zone: within 10 points of the best"
+};
+
 // Which markings the cloth and rails carry.
 enum class TableMarkings {
   automatic,  // snooker for a table of the default snooker size (3.569 x 1.778 m),
@@ -81,6 +95,7 @@ struct TableScene {
   TableMarkings markings = TableMarkings::automatic;
   std::vector<DrawnBall> balls;  // drawn in order, the last on top
   std::optional<TargetZone> target;
+  std::optional<TableField> field;  // over the cloth, under the target zone and paths
   std::vector<TableDot> dots;  // over the paths, under the balls; the caller explains them
   std::string dots_legend;     // legend text for the dots; empty: no entry
   std::string faint_legend;    // legend text for the faint paths; empty: no entry
@@ -89,6 +104,7 @@ struct TableScene {
 // The scene of a problem file: its table, its target zone, the cue ball (white, "cue
 // ball"), its object balls by name in their colours (ball_colour, else
 // other_ball_colour) and its obstacles as red balls named "obstacle 1", "obstacle 2", ...
+// (named obstacles by their names, in their colours where a game gives them one)
 TableScene problem_table(const problems::Problem& problem);
 
 // The markings TableMarkings::automatic chooses for a scene.

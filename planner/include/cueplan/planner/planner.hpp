@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@
 #include "cueplan/problems/problem.hpp"
 
 namespace cueplan::planner {
+
+class PositionField;  // position.hpp
+class PositionCache;
 
 // Global stage (NLopt): DIRECT-L, controlled random search with local mutation (CRS2),
 // multi-level single linkage (MLSL, with the local method inside), improved stochastic
@@ -85,10 +89,19 @@ Estimate wilson_estimate(int successes, int samples);
 // (its samples are the potting strokes), or, without a pot, simply of stopping there;
 // P(both) is the chance of the whole shot: pot and position together (without a pot,
 // equal to position).
+//
+// Position play (a problem with `next`): P(position) is the chance of stopping on the
+// target given the pot (1 without a target); P(next) is the mean, over the noisy strokes
+// that pot (and stop on the target), of P(next pot) from where the cue ball stops
+// (PositionField), its interval the sampling's (normal, 95 %) widened by kFieldError,
+// the closed form's allowance; P(both) is P(pot, position and next) counted on the same
+// strokes, each landing's next pot drawn as made with its P (with a list of next pots,
+// the look-ahead value: position.hpp), the Wilson interval of that count.
 struct Success {
   std::optional<Estimate> pot;
   Estimate position;
   Estimate both;
+  std::optional<Estimate> next;
 
   bool operator==(const Success&) const = default;
 };
@@ -139,6 +152,9 @@ struct PlannerOptions {
   // ghost-ball line) and the search is over speed and spin; false searches the aim
   // like any other coordinate (bench/README.md, "Pot and position", compares them).
   bool solve_pot_aim = true;
+  // Position play: where the position fields of problems with `next` are kept between
+  // plans (not owned; may be shared by threads); null: each plan builds its own.
+  PositionCache* position_cache = nullptr;
 
   // Empty when usable; otherwise the first broken rule, fields named as these members
   // ({"max_evaluations"}, {"noise", "scale"}, {"simulation", "impact_accuracy"}).
@@ -197,6 +213,27 @@ struct PotReport {
   bool operator==(const PotReport&) const = default;
 };
 
+// Position play: the next pot from where a stroke leaves the cue ball, in a player's terms.
+struct NextReport {
+  std::string ball;          // the next pot's ball (the first of problem.next)
+  int pocket = -1;
+  std::string pocket_name;
+  physics::Vec2 landing;     // where the stroke leaves the cue ball (m)
+  double p = 0.0;            // P(next pot) from the landing (PositionField)
+  double cut_deg = 0.0;      // the cut it leaves (0: full ball); cut_side as PotReport's
+  int cut_side = 0;
+  std::string thickness;     // full, 3/4, half, 1/4 or thin
+  double distance_m = 0.0;   // cue ball to the next ball
+  std::string screened_by;   // a ball in the way, or empty
+  double zone_area_m2 = 0.0; // where P(next) is within 10 points of the best
+  bool in_zone = false;      // the landing is in it
+  double best_p = 0.0;       // the best value on the table, and where
+  physics::Vec2 best;
+  std::string words;         // "leaves a quarter-ball cut on the black, 40 cm"
+
+  bool operator==(const NextReport&) const = default;
+};
+
 // A stroke and what it does.
 struct PlannedShot {
   physics::Shot shot;
@@ -219,6 +256,7 @@ struct PlannedShot {
   problems::Failure failure = problems::Failure::none;
   std::string failure_reason;
   std::optional<PotReport> pot;      // pot problems: the pot of the reported strokes
+  std::optional<NextReport> next;    // problems with `next`: what the landing leaves
   physics::ImpactMethod impact_method = physics::ImpactMethod::exact;  // that gave this outcome
 };
 
@@ -235,7 +273,13 @@ struct PlanResult {
   double time_s = 0.0;               // wall clock
   int local_searches = 0;            // local polishes run
   int converged_searches = 0;        // of those, ended by their tolerances or stalled (not cut by a budget)
+  // Problems with `next`: the position field the strokes were judged by (for the zone).
+  std::shared_ptr<const PositionField> position_field;
 };
+
+// The next pot from `landing` in a player's terms (a problem with `next`, its field).
+NextReport next_report(const problems::Problem& problem, const PositionField& field,
+                       physics::Vec2 landing);
 
 PlanResult plan(const problems::Problem& problem, const PlannerOptions& options);
 

@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cueplan/physics/shot.hpp"
 
@@ -55,6 +56,15 @@ struct Pot {
   int pocket = -1;   // index into Scene::pockets; the file names it (kPocketNames)
 };
 
+// A pot to be played after this stroke (the position play's next ball): an object ball
+// into a pocket, from wherever this stroke leaves the cue ball.
+struct NextPot {
+  std::string ball;  // an object ball's name (Scene::balls), not the pot's ball
+  int pocket = -1;   // index into Scene::pockets
+};
+// The most next pots a problem may list (`next` in the file).
+inline constexpr int kMostNextPots = 3;
+
 struct Problem {
   std::string name;    // the file's `name`, or the stem of its file name
   std::string source;  // file path, or the source name given to parse_problem
@@ -76,6 +86,15 @@ struct Problem {
   // cue ball must strike first (required_first_contact() gives the default, the pot's ball).
   std::optional<Pot> pot;
   std::optional<std::string> first_contact;
+  // Position play (`next`): the pots to be played after this one, in order (at most
+  // kMostNextPots; empty: none). The stroke is judged by how well it leaves the cue ball
+  // for the first (planner/position.hpp); with a pot only. Without a target the pot is
+  // the only condition and the next pot ranks the strokes.
+  std::vector<NextPot> next;
+  bool next_is_list = false;  // the file wrote `next` as a list (how errors name its fields)
+  // Names of the obstacles (`obstacles` written as a mapping), in Scene::obstacles'
+  // order; empty when the file lists them as points.
+  std::vector<std::string> obstacle_names;
 
   // The ball the cue ball must strike first: first_contact, else the pot's ball; empty
   // when neither is given (any ball, or none).

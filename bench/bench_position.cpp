@@ -1,0 +1,206 @@
+// Position play (planner/position.hpp): the cost of a position field and of a next-ball
+// plan, and how good the plans are, on generated snooker layouts.
+//
+//   build/bench/bench_position [--layouts N (30)] [--seed S (1)]
+//
+// Layouts: planner::known_pot_problems(N, S) (a cue ball, a red it can pot directly into
+// a pocket) made position play: the target dropped, a black added at a random place
+// (clear of the cushions, pockets and balls) and `next` the black into the pocket whose
+// zone is largest. Each is planned as `cueplan solve` plans it (the impact table, exact
+// verification, one thread). Measured per layout:
+//   field      the PositionField build (ms);
+//   plan       the whole plan, field included (wall and CPU ms);
+//   pots       the best stroke re-simulated exactly pots the red;
+//   next >= 0.6  the black solved (plan()) from where the cue ball stops has P(pot) >= 0.6;
+//   agrees     that P(pot) lies within the reported success.next interval;
+//   better     the landing's field value is above 80 % of the landings of the strokes that
+//              pot the red the same way (the best stroke's aim, speeds 0.5-4.5 m/s and
+//              topspins -1.2..1.2 on a grid, no side): the positions the same pot reaches.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cueplan/physics/impact_table.hpp"
+#include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/position.hpp"
+#include "cueplan/problems/problem.hpp"
+#include "plan_stats.hpp"
+#include "table_cache.hpp"
+
+namespace {
+
+using namespace cueplan;
+using bench::percentile;
+using planner::describe_stroke;
+using bench::thread_cpu_s;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) {
+  return 1e3 * std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// A black at a random clear place, into the pocket its field rates best; false when
+// no place was found.
+bool make_position_play(problems::Problem* p, std::mt19937_64& rng, const planner::NoiseModel& noise) {
+  const physics::Scene& s = p->scene;
+  const double R = s.radius();
+  std::uniform_real_distribution<double> x(0.15, s.length - 0.15), y(0.15, s.width - 0.15);
+  for (int tries = 0; tries < 200; ++tries) {
+    const physics::Vec2 black{x(rng), y(rng)};
+    bool clear = std::hypot(black.x - p->cue_ball.x, black.y - p->cue_ball.y) > 2 * R + 0.1;
+    for (const physics::ObjectBall& b : s.balls)
+      clear = clear && std::hypot(black.x - b.position.x, black.y - b.position.y) > 2 * R + 0.1;
+    for (const physics::Pocket& k : s.pockets)
+      clear = clear && std::hypot(black.x - k.centre.x, black.y - k.centre.y) > 0.2;
+    if (!clear) continue;
+    problems::Problem q = *p;
+    q.has_target = false;
+    q.scene.balls.push_back({"black", black});
+    double best = -1.0;
+    int pocket = -1;
+    for (int k = 0; k < static_cast<int>(s.pockets.size()); ++k) {
+      q.next = {{"black", k}};
+      if (problems::validate(q)) continue;
+      // The pocket whose zone is largest: the easiest way to play the black.
+      const planner::PositionField f = planner::PositionField::for_problem(q, noise);
+      if (f.best_value() >= 0.5 && f.zone_area_m2() > best) best = f.zone_area_m2(), pocket = k;
+    }
+    if (pocket < 0) continue;
+    q.next = {{"black", pocket}};
+    q.name = p->name + " then black";
+    *p = q;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int layouts = 30;
+  uint64_t seed = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (a == "--layouts") layouts = std::atoi(next().c_str());
+    else if (a == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
+    else {
+      fmt::print(stderr, "bench_position: unknown argument {}\n", a);
+      return 2;
+    }
+  }
+  const physics::Scene snooker = physics::snooker_scene();
+  std::string note;
+  const physics::ImpactTable table = cli::load_or_build_table(
+      snooker.ball_and_cushion, physics::ImpactTableOptions{}, cli::default_table_cache_dir(), &note);
+  physics::SimulationOptions sim;
+  sim.impact_method = physics::ImpactMethod::table;
+  sim.table = &table;
+  sim.impact_accuracy = 5e-6;  // as `cueplan solve` searches with the table
+  physics::SimulationOptions exact;
+  exact.record_path = false;
+
+  planner::PlannerOptions options;
+  options.simulation = sim;
+  options.simulation.record_path = false;
+  options.threads = 1;
+  std::mt19937_64 rng(seed);
+
+  std::vector<double> field_ms, plan_ms, plan_cpu_ms, next_p, reported;
+  int count = 0, solved = 0, pots = 0, next_ok = 0, agrees = 0, better = 0, in_zone = 0;
+  for (planner::KnownShotProblem& k : planner::known_pot_problems(layouts, seed, sim)) {
+    problems::Problem p = k.problem;
+    if (!make_position_play(&p, rng, options.noise)) continue;
+    ++count;
+    // Warm, then timed: the field alone.
+    (void)planner::PositionField::for_problem(p, options.noise);
+    const Clock::time_point f0 = Clock::now();
+    const planner::PositionField field = planner::PositionField::for_problem(p, options.noise);
+    field_ms.push_back(ms_since(f0));
+
+    const double cpu0 = thread_cpu_s();
+    const planner::PlanResult r = planner::plan(p, options);
+    plan_cpu_ms.push_back(1e3 * (thread_cpu_s() - cpu0));
+    plan_ms.push_back(1e3 * r.time_s);
+    if (r.status != planner::PlanStatus::solved) {
+      fmt::print(stderr, "{}: {}\n", p.name, r.message);
+      continue;
+    }
+    ++solved;
+    const planner::PlannedShot& b = r.best;
+    pots += problems::makes_pot(p, physics::simulate(p.scene, p.cue_ball, b.shot, exact));
+    in_zone += b.next && b.next->in_zone;
+
+    // The black from where the cue ball stops, the red gone.
+    problems::Problem n = p;
+    n.scene.balls.erase(std::remove_if(n.scene.balls.begin(), n.scene.balls.end(),
+                                       [&](const physics::ObjectBall& o) { return o.name == p.pot->ball; }),
+                        n.scene.balls.end());
+    n.cue_ball = b.final_position;
+    n.pot = problems::Pot{"black", p.next.front().pocket};
+    n.first_contact.reset();
+    n.next.clear();
+    double p_next = 0.0;
+    if (!problems::validate(n)) {
+      const planner::PlanResult m = planner::plan(n, options);
+      if (m.status == planner::PlanStatus::solved && m.best.success.pot) p_next = m.best.success.pot->p;
+      const planner::PositionField check(n.scene, {{"black", n.pot->pocket}}, options.noise);
+      fmt::print(stderr, "  next problem: field at its cue ball {:.2f} (cut {:.1f}); planner {} {:.2f} {}; pockets jawed {}\n",
+                 check.next_shot(n.cue_ball).p, check.next_shot(n.cue_ball).cut_deg,
+                 planner::to_string(m.status), p_next, describe_stroke(m.best.shot),
+                 n.scene.pockets.front().jaws.has_value());
+    }
+    next_p.push_back(p_next);
+    next_ok += p_next >= 0.6;
+    if (b.success.next) {
+      reported.push_back(b.success.next->p);
+      agrees += p_next >= b.success.next->low && p_next <= b.success.next->high;
+    }
+
+    // The positions the same pot reaches: the best stroke's aim, other speeds and spins.
+    const double landing_value = field.value(b.final_position);
+    int reached = 0, below = 0;
+    double best_reached = 0.0;
+    for (double v = 0.5; v <= 4.5 + 1e-9; v += 0.25)
+      for (double kt = -1.2; kt <= 1.2 + 1e-9; kt += 0.2) {
+        physics::Shot s = b.shot;
+        s.speed = v;
+        s.topspin_k = kt;
+        s.sidespin_k = 0.0;
+        const physics::ShotResult o = physics::simulate(p.scene, p.cue_ball, s, options.simulation);
+        if (!problems::check_outcome(p, o).pot_made()) continue;
+        ++reached;
+        below += field.value(o.final_position) < landing_value;
+        best_reached = std::max(best_reached, field.value(o.final_position));
+      }
+    better += reached > 0 && below >= 0.8 * reached;
+    fmt::print(stderr, "{}: field {:.1f} ms, plan {:.0f} ms; next reported {:.2f}, solved from the "
+                       "landing {:.2f}; landing above {}/{} reached positions (best reached {:.2f}, field best {:.2f}, "
+                       "landing {:.2f}: {}; {}; pocket {})\n",
+               p.name, field_ms.back(), plan_ms.back(), b.success.next ? b.success.next->p : 0.0,
+               p_next, below, reached, best_reached, field.best_value(), landing_value,
+               b.next ? b.next->words : "", describe_stroke(b.shot),
+               problems::pocket_name(p.scene, p.next.front().pocket));
+  }
+  fmt::print("impact table: {}\n", note);
+  fmt::print("layouts {} (seed {}), solved {}, the red potted on re-simulation {}\n", count, seed,
+             solved, pots);
+  fmt::print("| measure | median | p95 |\n|---|---|---|\n");
+  fmt::print("| field build (ms) | {:.1f} | {:.1f} |\n", percentile(field_ms, 0.5), percentile(field_ms, 0.95));
+  fmt::print("| next-ball plan, wall (ms) | {:.0f} | {:.0f} |\n", percentile(plan_ms, 0.5), percentile(plan_ms, 0.95));
+  fmt::print("| next-ball plan, CPU (ms) | {:.0f} | {:.0f} |\n", percentile(plan_cpu_ms, 0.5),
+             percentile(plan_cpu_ms, 0.95));
+  const auto pct = [&](int k) { return 100.0 * k / std::max(1, solved); };
+  fmt::print("next pot from the landing solved with P(pot) >= 0.6: {}/{} ({:.0f} %)\n", next_ok, solved, pct(next_ok));
+  fmt::print("within the reported success.next interval: {}/{} ({:.0f} %)\n", agrees, solved, pct(agrees));
+  fmt::print("landing above 80 % of the positions the same pot reaches: {}/{} ({:.0f} %)\n", better,
+             solved, pct(better));
+  fmt::print("landing inside the zone: {}/{} ({:.0f} %)\n", in_zone, solved, pct(in_zone));
+  return 0;
+}
