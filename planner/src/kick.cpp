@@ -246,7 +246,9 @@ std::string why_not(const Blocks& b) {
 // contact, a cushion, the pocket, rest), where it ends, along its direction there.
 std::optional<double> leg_offset(const physics::BallOutcome& b, int after, Vec2 centre) {
   if (b.path.empty()) return std::nullopt;
-  double t_start = 0.0;
+  // The leg starts where the ball was set moving (the strike, or the contact that
+  // struck an object ball), or at its `after`-th cushion.
+  double t_start = b.events.empty() ? 0.0 : b.events.front().time;
   int met = 0;
   if (after > 0) {
     bool found = false;
@@ -402,7 +404,22 @@ KickFamilies kick_families(const problems::Problem& problem, bool direct) {
     int cushions;
     double length;
   };
-  std::vector<Ranked> found;
+  std::vector<Ranked> found, bent;
+  // The cue ball's mirror path to `to`, its failures counted in *blocks; a path whose
+  // legs only other balls screen (its bounces on the noses) in *screened.
+  const auto cue_path = [&](const std::vector<int>& seq, Vec2 to,
+                            const std::set<std::string>& skip_last, Blocks* blocks,
+                            std::optional<Geometry::Path>* screened) {
+    Blocks local;
+    std::optional<Geometry::Path> path =
+        geo.mirror_path(problem.cue_ball, seq, to, {}, skip_last, true, &local);
+    blocks->screened += local.screened;
+    blocks->off_cushion += local.off_cushion;
+    blocks->screened_by.insert(local.screened_by.begin(), local.screened_by.end());
+    if (!path && local.screened > 0 && local.off_cushion == 0 && !seq.empty())
+      *screened = geo.mirror_path(problem.cue_ball, seq, to, {}, skip_last, true, nullptr, false);
+    return path;
+  };
   for (int c = l.cushions_before_contact_min; c <= l.cushions_before_contact_max && c <= 3; ++c) {
     const std::vector<std::vector<int>> cue_sequences = sequences(c);
     for (int o = o_min; o <= o_max && o <= 2; ++o) {
@@ -433,9 +450,23 @@ KickFamilies kick_families(const problems::Problem& problem, bool direct) {
                 if (!path) break;
                 u = path->last;
               }
-              path = geo.mirror_path(problem.cue_ball, seq, contact, skip_none, skip_last, true,
-                                     &blocks);
-              if (!path) continue;
+              std::optional<Geometry::Path> screened;
+              path = cue_path(seq, contact, skip_last, &blocks, &screened);
+              if (!path) {
+                if (screened && k == 0.0) {
+                  KickRoute route;
+                  route.cue_cushions = seq;
+                  route.cue_bounces = screened->bounces;
+                  route.ball = index;
+                  route.ball_name = name;
+                  route.seed_aim_deg =
+                      wrap_degrees(std::atan2(screened->first.y, screened->first.x) * kDeg);
+                  route.cue_length = screened->length;
+                  route.screened = true;
+                  bent.push_back({route, c, screened->length});
+                }
+                continue;
+              }
               KickRoute route;
               route.cue_cushions = seq;
               route.cue_bounces = path->bounces;
@@ -468,13 +499,15 @@ KickFamilies kick_families(const problems::Problem& problem, bool direct) {
           const Vec2 ghost = sub(centre, scale(d, 2.0 * r));
           for (const std::vector<int>& seq : cue_sequences) {
             ++blocks.lines;
-            const std::optional<Geometry::Path> path =
-                geo.mirror_path(problem.cue_ball, seq, ghost, skip_none, skip_last, true, &blocks);
+            std::optional<Geometry::Path> screened;
+            std::optional<Geometry::Path> path = cue_path(seq, ghost, skip_last, &blocks, &screened);
+            const bool clear = path.has_value();
+            if (!clear) path = screened;
             if (!path) continue;
             const Vec2 u = path->last;
             const double cut = std::acos(std::clamp(dot(u, d), -1.0, 1.0)) * kDeg;
             if (cut > kMaxCut) {
-              ++blocks.too_thin;
+              if (clear) ++blocks.too_thin;
               continue;
             }
             KickRoute route;
@@ -489,8 +522,9 @@ KickFamilies kick_families(const problems::Problem& problem, bool direct) {
             route.cue_length = path->length;
             route.object_length = opath->length;
             route.cut_deg = cut;
-            found.push_back({route, c + o, path->length + opath->length + 0.01 * cut});
-            any = true;
+            route.screened = !clear;
+            (clear ? found : bent).push_back({route, c + o, path->length + opath->length + 0.01 * cut});
+            any = any || clear;
           }
         }
       }
@@ -502,6 +536,11 @@ KickFamilies kick_families(const problems::Problem& problem, bool direct) {
     return a.length < b.length;
   });
   for (Ranked& f : found) out.routes.push_back(std::move(f.route));
+  std::stable_sort(bent.begin(), bent.end(), [](const Ranked& a, const Ranked& b) {
+    if (a.cushions != b.cushions) return a.cushions < b.cushions;
+    return a.length < b.length;
+  });
+  for (Ranked& f : bent) out.screened.push_back(std::move(f.route));
   return out;
 }
 
@@ -537,6 +576,8 @@ std::vector<physics::Shot> solve_kick(const Task& task, const KickRoute& route,
     const double shrink = k > l.spin_max ? l.spin_max / k : 1.0;
     const double kt = kt0 * shrink, ks = ks0 * shrink;
     if (!tried.insert({kt, ks}).second) continue;
+    // A screened mirror line: only side can bend the cue ball round the screen.
+    if (route.screened && std::abs(ks) < 0.25) continue;
     for (double speed : speeds) {
       if (std::chrono::steady_clock::now() >= deadline ||
           static_cast<int>(solved.size()) >= keep)

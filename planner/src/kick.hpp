@@ -45,12 +45,18 @@ struct KickRoute {
   double cue_length = 0.0;     // m, the cue ball's path to the contact
   double object_length = 0.0;  // m, the pot's ball's path to its pocket
   double cut_deg = 0.0;        // a pot: the cut the route asks for
+  // The mirror line is screened by another ball (its bounces fall on the noses): played
+  // with side only, which bends the rebound off the mirror line and may clear the screen.
+  bool screened = false;
 };
 
 // The families a problem's limits allow, each with its clear routes or why it has none.
 struct KickFamilies {
   std::vector<KickRoute> routes;       // every clear route, cheapest family first
   std::vector<std::string> ruled_out;  // "one cushion: ..." for each family with no clear route
+  // Cushion routes whose mirror lines only other balls screen, cheapest first: tried
+  // with side once the clear routes have failed.
+  std::vector<KickRoute> screened;
   int families = 0;                    // families the limits allow (those searched)
 };
 

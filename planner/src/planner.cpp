@@ -393,7 +393,9 @@ class Planning {
     if (screen_) result_.ruled_out.push_back("direct: " + screen_->reason);
     for (const std::string& why : families.ruled_out) result_.ruled_out.push_back(why);
     result_.kick_routes = static_cast<int>(families.routes.size());
-    if (families.routes.empty()) {
+    // Screened cushion routes, played with side only, once the clear ones have failed.
+    const bool side = problem_.limits.spin_max >= 0.25;
+    if (families.routes.empty() && !(side && try_routes(task, families.screened))) {
       if (direct_search()) return;  // the direct search's answer stands
       result_.status = PlanStatus::unreachable;
       std::string why;
@@ -403,10 +405,19 @@ class Planning {
       unreachable_ = true;
       return;
     }
+    if (families.routes.empty()) return;  // solved round a screen, with side
     kick_tried_ = true;
-    physics::SimulationOptions sim = sim_;  // no event cap: the pot's ball runs on after the kick
+    if (!try_routes(task, families.routes) && side) try_routes(task, families.screened);
+  }
+
+  // Plays `routes` in order until kKickFinals strokes solve or the refine deadline; the
+  // strokes that solve (on the exact re-check) join the finals. True when any did.
+  bool try_routes(const Task& task, const std::vector<detail::KickRoute>& routes) {
+    // The exact model (a kick's aim is a root a few thousandths of a degree wide), with
+    // no event cap: the pot's ball runs on after the kick.
+    const physics::SimulationOptions& sim = exact_;
     int solved = 0;
-    for (const detail::KickRoute& route : families.routes) {
+    for (const detail::KickRoute& route : routes) {
       if (Clock::now() >= refine_deadline_ || solved >= kKickFinals) break;
       ++kick_routes_tried_;
       const std::vector<physics::Shot> shots = detail::solve_kick(
@@ -420,6 +431,7 @@ class Planning {
         kicked_ = true;
       }
     }
+    return solved > 0;
   }
 
   // 2. Global stage over the whole stroke space, remembering every family's best.
