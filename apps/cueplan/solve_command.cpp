@@ -42,7 +42,8 @@ std::string tip_offset_text(const phys::Shot& shot, const prob::Limits& limits) 
 }
 
 std::string miss_text(const prob::Problem& problem, const plan::PlannedShot& p) {
-  if (!problem.has_target) return "none: a pure pot has no target";
+  if (!problem.has_target)
+    return problem.is_escape() ? "none: an escape has no target" : "none: a pure pot has no target";
   if (!std::isfinite(p.miss_distance)) return "none: the ball did not come to rest on the table";
   const bool inside = p.miss_distance <= problem.tolerance;
   return fmt::format("{:.3g} mm", 1000.0 * p.miss_distance) + " (tolerance " +
@@ -104,13 +105,17 @@ void write_text(std::ostream& out, const prob::Problem& problem,
   else if (!problem.next.empty())
     line("target", "none: position for the next pot, the cue ball may stop anywhere");
   else
-    line("target", "none: a pure pot, the cue ball may stop anywhere");
+    line("target", problem.is_escape()
+                       ? "none: an escape, a legal hit is all it asks (the cue ball stays on the table)"
+                       : "none: a pure pot, the cue ball may stop anywhere");
   if (b.next)
     for (const auto& [label, text] : next_lines(*b.next)) line(label, text);
   line("miss distance", miss_text(problem, b));
   line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
+  if (!b.route_words.empty()) line("route in words", b.route_words);
   line("family", b.family);
+  for (const std::string& why : r.ruled_out) line("ruled out", why);
   const std::vector<ConstraintRow> rows = constraints(problem, b, options.enforce_rigid_limit);
   int broken = 0;
   for (const ConstraintRow& c : rows) broken += std::string(c.state) == "broken" ? 1 : 0;
@@ -191,6 +196,12 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
   for (const plan::PlannedShot& a : r.alternatives)
     alternatives.push_back(planned_json(problem, a, options.enforce_rigid_limit));
   j["alternatives"] = alternatives;
+  // Kicks, banks and escapes: the best stroke's route in words, each alternative's in its
+  // entry, and the route families with no clear route.
+  j["route_words"] = r.best.route_words;
+  for (size_t i = 0; i < r.alternatives.size(); ++i)
+    j["alternatives"][i]["route_words"] = r.alternatives[i].route_words;
+  j["ruled_out"] = r.ruled_out;
   j["target"] = problem.has_target ? point_json(problem.target) : ordered_json();
   j["tolerance"] = problem.tolerance;
   j["cue_ball"] = point_json(problem.cue_ball);
@@ -340,6 +351,11 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
               static_cast<char>(std::tolower(static_cast<unsigned char>(outcome.front()))) +
               outcome.substr(1);
   d.caption.push_back(outcome + ".");
+  if (!b.route_words.empty()) {
+    std::string words = b.route_words;
+    words.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(words.front())));
+    d.caption.push_back(words + ".");
+  }
   if (!r.alternatives.empty())
     d.caption.push_back(
         "Faint grey: the alternatives (other routes or spins), listed by cueplan solve.");
@@ -391,8 +407,9 @@ SolveCommand::SolveCommand(CLI::App& parent) {
   c.footer(
       "Status: solved (exit 0); no_solution_found - the search converged everywhere it "
       "looked without reaching the target, a strong hint but no proof - budget_exhausted, or "
-      "unreachable - a pot another ball screens, proved from the geometry (exit 1; the best "
-      "stroke found is still reported); bad input exits 2.\n"
+      "unreachable - no direct, kick or bank route within the limits, every family screened or "
+      "off the cushions on its mirror lines (exit 1; the ruled-out families are listed); bad "
+      "input exits 2.\n"
       "Example: cueplan solve problems/one_rail_position.yaml --seed 7 --svg plan.svg");
 }
 

@@ -40,6 +40,7 @@
 #include "cueplan/physics/parallel.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/position.hpp"
+#include "kick.hpp"
 #include "nlopt_stage.hpp"
 #include "ompl_stage.hpp"
 #include "outcome.hpp"
@@ -84,6 +85,8 @@ constexpr double kExactAccuracy = 1e-9;   // exact verification (the simulator's
 constexpr uint64_t kVerifyStream = 1u << 20;
 constexpr uint64_t kRobustStream = 1u << 21;
 constexpr uint64_t kSimplifyStream = 1u << 22;
+constexpr int kKickFinals = 4;    // kick routes are played until this many strokes solve
+constexpr int kKickPerRoute = 2;  // solved strokes (spins) kept of one route
 
 std::string mm(double metres) {
   if (!std::isfinite(metres)) return "no rest position";
@@ -302,13 +305,18 @@ class Planning {
                                     PositionField::for_problem(problem_, options_.noise));
         result_.position_field = task.next_field;
       }
-      global_stage(task);
-      polish_stage(task);
-      verify_stage(task);
-      simplify_stage(task);
-      rank_stage(task);
-      robust_stage(task);
-      report_stage(task);
+      if (direct_search()) {
+        global_stage(task);
+        polish_stage(task);
+        verify_stage(task);
+        simplify_stage(task);
+      }
+      kick_stage(task);
+      if (!unreachable_) {
+        rank_stage(task);
+        robust_stage(task);
+        report_stage(task);
+      }
     }
     result_.time_s = std::chrono::duration<double>(Clock::now() - started_).count();
     return std::move(result_);
@@ -340,19 +348,99 @@ class Planning {
       result_.error = std::move(e);
       return false;
     }
-    if (const std::optional<problems::PotScreen> screen = problems::screened_pot(problem_)) {
+    screen_ = problems::screened_pot(problem_);
+    if (screen_ && !kicks_allowed()) {
       result_.status = PlanStatus::unreachable;
-      result_.message = "Unreachable: " + screen->reason +
-                        " (pots off cushions, kisses and plants are not planned).";
+      result_.ruled_out.push_back("direct: " + screen_->reason);
+      result_.message = "Unreachable: " + screen_->reason +
+                        " (the limits allow no kick or bank: limits.cushions_before_contact and "
+                        "limits.object_cushions are 0; kisses and plants are not planned).";
       unreachable_ = true;
       return false;
     }
     sim_ = options_.simulation;
     sim_.record_path = false;
+    verify_ = options_.verify_exact &&
+              physics::chosen_impact_method(problem_.scene, sim_) == physics::ImpactMethod::table;
+    exact_ = sim_;
+    exact_.impact_method = physics::ImpactMethod::exact;
+    exact_.impact_accuracy = kExactAccuracy;
+    exact_.table = nullptr;
     // The search's own copy cuts strokes that run on around the table short.
     search_sim_ = sim_;
     search_sim_.max_events = detail::search_event_cap(problem_, sim_.max_events);
     return true;
+  }
+
+  // Whether the normal search (global, polish, verify, simplify) plans this problem: not
+  // an escape (planned by its routes), not a screened pot, and not when the limits ask for
+  // cushions before the contact or off the object ball.
+  bool direct_search() const {
+    const problems::Limits& l = problem_.limits;
+    if (problem_.is_escape() || screen_) return false;
+    return l.cushions_before_contact_min == 0 && (!problem_.pot || l.object_cushions_min == 0);
+  }
+  // Whether kick and bank routes are searched: escapes, and pots struck directly (no
+  // plant) whose limits allow cushions before the contact or off the pot's ball.
+  bool kicks_allowed() const {
+    const problems::Limits& l = problem_.limits;
+    if (problem_.is_escape()) return true;
+    if (!problem_.pot || problem_.required_first_contact() != problem_.pot->ball) return false;
+    return l.cushions_before_contact_max > 0 || l.object_cushions_max > 0;
+  }
+
+  // Kicks, banks and escapes (kick.hpp): when the direct search has not solved the
+  // problem, the route families the limits allow, cheapest first, each route played
+  // on its grid of speeds and spins with the aim solved on the simulator; the strokes
+  // that solve join the finals for the rank stage. No clear route in any family (and
+  // no direct search): unreachable, with every family's reason.
+  void kick_stage(const Task& task) {
+    if (!kicks_allowed()) return;
+    if (std::any_of(finals_.begin(), finals_.end(), [](const Final& f) { return f.shot.solves; }))
+      return;
+    const detail::KickFamilies families = detail::kick_families(problem_, problem_.is_escape());
+    if (screen_) result_.ruled_out.push_back("direct: " + screen_->reason);
+    for (const std::string& why : families.ruled_out) result_.ruled_out.push_back(why);
+    result_.kick_routes = static_cast<int>(families.routes.size());
+    // Screened cushion routes, played with side only, once the clear ones have failed.
+    const bool side = problem_.limits.spin_max >= 0.25;
+    if (families.routes.empty() && !(side && try_routes(task, families.screened))) {
+      if (direct_search()) return;  // the direct search's answer stands
+      result_.status = PlanStatus::unreachable;
+      std::string why;
+      for (const std::string& r : result_.ruled_out) why += (why.empty() ? "" : "; ") + r;
+      result_.message = "Unreachable: no direct, kick or bank route within the limits (" + why +
+                        "). Routes are judged on their mirror lines, two radii clear of every ball.";
+      unreachable_ = true;
+      return;
+    }
+    if (families.routes.empty()) return;  // solved round a screen, with side
+    kick_tried_ = true;
+    if (!try_routes(task, families.routes) && side) try_routes(task, families.screened);
+  }
+
+  // Plays `routes` in order until kKickFinals strokes solve or the refine deadline; the
+  // strokes that solve (on the exact re-check) join the finals. True when any did.
+  bool try_routes(const Task& task, const std::vector<detail::KickRoute>& routes) {
+    // The exact model (a kick's aim is a root a few thousandths of a degree wide), with
+    // no event cap: the pot's ball runs on after the kick.
+    const physics::SimulationOptions& sim = exact_;
+    int solved = 0;
+    for (const detail::KickRoute& route : routes) {
+      if (Clock::now() >= refine_deadline_ || solved >= kKickFinals) break;
+      ++kick_routes_tried_;
+      const std::vector<physics::Shot> shots = detail::solve_kick(
+          task, route, sim, refine_deadline_, kKickPerRoute, &result_.evaluations);
+      for (const physics::Shot& shot : shots) {
+        Final f = described(task, shot);
+        if (!f.shot.solves) continue;  // the exact re-check moved it out
+        f.id = next_id_++;
+        finals_.push_back(std::move(f));
+        ++solved;
+        kicked_ = true;
+      }
+    }
+    return solved > 0;
   }
 
   // 2. Global stage over the whole stroke space, remembering every family's best.
@@ -722,7 +810,8 @@ class Planning {
 
   // 7. Robust mode: polish each solved shot for its chance under the noise.
   void robust_stage(const Task& task) {
-    if (!options_.robust || !any_solved_ || seconds_left() <= 0.0) return;
+    // A kick's aim is its own root, not the pot's ghost-ball aim the robust polish solves.
+    if (!options_.robust || !any_solved_ || kicked_ || seconds_left() <= 0.0) return;
     const std::vector<detail::NoiseDraw> draws = detail::noise_draws(
         options_.robust_search_samples, detail::stream_seed(options_.seed, kRobustStream));
     const int n = static_cast<int>(finals_.size());
@@ -777,6 +866,18 @@ class Planning {
   void report_stage(const Task& task) {
     PlanResult& result = result_;
     const double tol = problem_.tolerance;
+    if (finals_.empty() && kick_tried_) {
+      result.status = PlanStatus::no_solution_found;
+      std::string ruled;
+      for (const std::string& r : result.ruled_out) ruled += (ruled.empty() ? "" : "; ") + r;
+      result.message = fmt::format(
+          "No solution found: {} kick or bank route{} within the limits, {} tried on the exact "
+          "model (speeds and spins, aim solved for each), and none made a legal stroke within "
+          "the time budget ({:.3g} s){}.",
+          result.kick_routes, result.kick_routes == 1 ? "" : "s", kick_routes_tried_,
+          options_.max_time_s, ruled.empty() ? "" : "; ruled out: " + ruled);
+      return;
+    }
     if (finals_.empty()) {
       result.status = timed_out_ ? PlanStatus::budget_exhausted : PlanStatus::no_solution_found;
       result.message = timed_out_ ? fmt::format("The time budget ({:.3g} s) ran out before any "
@@ -804,9 +905,23 @@ class Planning {
       for (PlannedShot& a : result.alternatives)
         a.next = next_report(problem_, *task.next_field, a.final_position);
     }
+    if (!problem_.required_first_contact().empty()) {
+      // The route of each reported stroke in a player's words (one simulation each).
+      std::vector<PlannedShot*> reported{&result.best};
+      for (PlannedShot& a : result.alternatives) reported.push_back(&a);
+      for (PlannedShot* p : reported) {
+        const physics::ShotResult r = task.simulate(p->shot, report_sim());
+        ++result.evaluations;
+        p->route_words = detail::route_words(problem_, p->shot, r);
+      }
+    }
     const PlannedShot& best = result.best;
     std::string where = fmt::format("{} ({}) stops {} from the target (tolerance {})", best.family,
                                     describe_stroke(best.shot), mm(best.miss_distance), mm(tol));
+    if (problem_.is_escape())
+      where = fmt::format("{} ({}) {}", best.family, describe_stroke(best.shot),
+                          best.solves ? "makes a legal first contact (" + *problem_.first_contact + ")"
+                                      : "fails: " + best.failure_reason);
     if (problem_.pot) {
       const std::string pot = fmt::format("{} ({}) {} {} in the {} pocket", best.family,
                                           describe_stroke(best.shot),
@@ -818,6 +933,7 @@ class Planning {
                                 mm(best.miss_distance), mm(tol))
                   : pot;
     }
+    if (kicked_ && !best.route_words.empty()) where += " (" + best.route_words + ")";
     const int searched = std::min<int>(options_.local_starts, static_cast<int>(starts_.size()));
     if (best.solves) {
       result.status = PlanStatus::solved;
@@ -912,6 +1028,10 @@ class Planning {
   detail::NoiseStream draws_{options_.seed};  // the common draws of every success estimate
   bool any_solved_ = false;
   bool unreachable_ = false;
+  std::optional<problems::PotScreen> screen_;  // a direct pot the geometry rules out
+  bool kick_tried_ = false;  // kick or bank routes were played
+  bool kicked_ = false;      // and some solved: the finals include kicks
+  int kick_routes_tried_ = 0;
   int robust_improved_ = 0;
 };
 

@@ -1,6 +1,8 @@
 // What a problem asks for: a human summary, and the tests a shot and its outcome pass.
 #include "cueplan/problems/problem.hpp"
 
+#include "cueplan/problems/ball_names.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -79,6 +81,10 @@ std::string file_field(const FieldPath& path) {
     if (*member == "cushions_max") return "limits.cushions[1]";
     if (*member == "elevation_min_deg") return "limits.elevation_deg[0]";
     if (*member == "elevation_max_deg") return "limits.elevation_deg[1]";
+    if (*member == "cushions_before_contact_min") return "limits.cushions_before_contact[0]";
+    if (*member == "cushions_before_contact_max") return "limits.cushions_before_contact[1]";
+    if (*member == "object_cushions_min") return "limits.object_cushions[0]";
+    if (*member == "object_cushions_max") return "limits.object_cushions[1]";
   }
   return path.text();  // cue_ball, target, tolerance, max_strokes, time_budget_s, pot.ball,
                        // first_contact
@@ -113,6 +119,17 @@ Validation validate(const Problem& p) {
   if (l.cushions_max < l.cushions_min)
     return invalid({"limits", "cushions_max"}, "must not be below the least count",
                    l.cushions_max);
+  if (l.cushions_before_contact_min < 0)
+    return invalid({"limits", "cushions_before_contact_min"}, "must not be negative",
+                   l.cushions_before_contact_min);
+  if (l.cushions_before_contact_max < l.cushions_before_contact_min)
+    return invalid({"limits", "cushions_before_contact_max"}, "must not be below the least count",
+                   l.cushions_before_contact_max);
+  if (l.object_cushions_min < 0)
+    return invalid({"limits", "object_cushions_min"}, "must not be negative", l.object_cushions_min);
+  if (l.object_cushions_max < l.object_cushions_min)
+    return invalid({"limits", "object_cushions_max"}, "must not be below the least count",
+                   l.object_cushions_max);
   if (!std::isfinite(l.elevation_min_deg) || l.elevation_min_deg < 0.0)
     return invalid({"limits", "elevation_min_deg"}, "must be finite and not negative (deg)",
                    l.elevation_min_deg);
@@ -148,11 +165,17 @@ Validation validate(const Problem& p) {
                                              : "names no pocket of this table",
                      p.pot->pocket);
   }
-  if (p.first_contact && !is_ball(*p.first_contact))
+  if (p.first_contact && !is_ball(*p.first_contact) && !is_contact_class(*p.first_contact))
     return invalid({"first_contact"},
-                   fmt::format("names no object ball on the table: \"{}\"", *p.first_contact));
-  if (!p.has_target && !p.pot)
-    return invalid({"target"}, "is required unless the problem has a pot");
+                   fmt::format("names no object ball on the table and no class of balls: \"{}\"",
+                               *p.first_contact));
+  if (p.first_contact && p.pot && is_contact_class(*p.first_contact) &&
+      !contact_allowed(*p.first_contact, p.pot->ball, p.scene.balls))
+    return invalid({"first_contact"},
+                   fmt::format("{} does not allow a first contact on the pot's ball {}",
+                               *p.first_contact, p.pot->ball));
+  if (!p.has_target && !p.pot && !p.first_contact)
+    return invalid({"target"}, "is required unless the problem has a pot or a first_contact");
   if (!p.next.empty() && !p.pot)
     return invalid({"next"}, "needs a pot: the next pot is played after this stroke's pot");
   if (p.next.size() > static_cast<size_t>(kMostNextPots))
@@ -184,6 +207,8 @@ Validation validate(const Problem& p) {
 }
 
 std::string Problem::required_first_contact() const {
+  // A class that allows the pot's ball: the pot's ball is the one to strike.
+  if (first_contact && pot && is_contact_class(*first_contact)) return pot->ball;
   if (first_contact) return *first_contact;
   return pot ? pot->ball : std::string();
 }
@@ -316,6 +341,16 @@ std::string pocket_name(const physics::Scene& scene, int pocket) {
   return fmt::format("pocket {}", pocket);
 }
 
+int cushions_before_contact(const physics::ShotResult& result) {
+  if (result.balls.empty()) return 0;
+  int n = 0;
+  for (const physics::ShotEvent& e : result.balls.front().events) {
+    if (e.type == physics::EventType::ball_contact) break;
+    if (e.type == physics::EventType::cushion) ++n;
+  }
+  return n;
+}
+
 bool reaches_target(const Problem& problem, const physics::ShotResult& result) {
   return check_outcome(problem, result).solves();
 }
@@ -340,6 +375,10 @@ const char* to_string(Failure failure) {
 namespace {
 
 Verdict broken(Failure failure, std::string reason) { return {failure, std::move(reason)}; }
+
+std::string count_range(int lo, int hi) {
+  return lo == hi ? fmt::format("{}", lo) : fmt::format("{}-{}", lo, hi);
+}
 
 const physics::BallOutcome* outcome_of(const physics::ShotResult& result, const std::string& name) {
   for (const physics::BallOutcome& b : result.balls)
@@ -373,10 +412,24 @@ Verdict check_outcome(const Problem& problem, const physics::ShotResult& result)
     const int k = result.first_contact;
     if (k <= 0 || k >= static_cast<int>(result.balls.size()))
       return broken(Failure::first_contact, fmt::format("the cue ball strikes no ball ({} first)", first));
-    if (result.balls[static_cast<size_t>(k)].name != first)
+    const std::string& struck = result.balls[static_cast<size_t>(k)].name;
+    if (is_contact_class(first)) {
+      if (!contact_allowed(first, struck, problem.scene.balls))
+        return broken(Failure::first_contact,
+                      fmt::format("foul: first contact on {} ({} asked for)", struck, first));
+    } else if (struck != first) {
       return broken(Failure::first_contact,
-                    fmt::format("the cue ball strikes {} first, not {}",
-                                result.balls[static_cast<size_t>(k)].name, first));
+                    fmt::format("the cue ball strikes {} first, not {}", struck, first));
+    }
+    const int before = cushions_before_contact(result);
+    const Limits& l = problem.limits;
+    if (before < l.cushions_before_contact_min || before > l.cushions_before_contact_max)
+      return broken(Failure::cushions,
+                    fmt::format("the cue ball meets {} cushion{} before it strikes {}, outside the "
+                                "allowed {}",
+                                before, before == 1 ? "" : "s", struck,
+                                count_range(l.cushions_before_contact_min,
+                                            l.cushions_before_contact_max)));
   }
   if (problem.pot) {
     const Pot& pot = *problem.pot;
@@ -401,6 +454,12 @@ Verdict check_outcome(const Problem& problem, const physics::ShotResult& result)
                     fmt::format("{} drops in the {} pocket, not the {}", pot.ball,
                                 pocket_name(problem.scene, ball->pocket),
                                 pocket_name(problem.scene, pot.pocket)));
+    const Limits& l = problem.limits;
+    if (ball->cushion_hits < l.object_cushions_min || ball->cushion_hits > l.object_cushions_max)
+      return broken(Failure::cushions,
+                    fmt::format("{} meets {} cushion{} before it drops, outside the allowed {}",
+                                pot.ball, ball->cushion_hits, ball->cushion_hits == 1 ? "" : "s",
+                                count_range(l.object_cushions_min, l.object_cushions_max)));
     for (const physics::BallOutcome& b : result.balls)
       if (b.pocketed && b.name != pot.ball && b.name != physics::kCueBallName)
         return broken(Failure::other_ball_pocketed,

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "cueplan/problems/ball_names.hpp"
 #include "cueplan/problems/presets.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
@@ -300,8 +301,26 @@ void read_pot(const Mapping& root, FieldLines& lines, Problem& problem) {
         std::begin(kPocketNames));
     problem.pot = pot;
   }
-  if (const std::optional<Field> field = root.find("first_contact"))
-    problem.first_contact = read_ball_name(*field, scene);
+  if (const std::optional<Field> field = root.find("first_contact")) {
+    // A class of balls (any_red, lowest, solids, stripes, any_colour) or one ball.
+    if (field->value.IsScalar() && is_contact_class(field->value.Scalar())) {
+      problem.first_contact = field->value.Scalar();
+      const auto allowed = [&](const physics::ObjectBall& b) {
+        return contact_allowed(*problem.first_contact, b.name, scene.balls);
+      };
+      if (std::none_of(scene.balls.begin(), scene.balls.end(), allowed))
+        detail::fail(*field, "names the class " + *problem.first_contact +
+                                 ", but no ball in balls belongs to it");
+    } else {
+      if (scene.balls.empty())
+        detail::fail(*field, "names an object ball, but the file has no balls: " +
+                                 detail::describe_value(field->value));
+      std::vector<std::string_view> names = ball_names(scene);
+      for (const char* c : kContactClasses) names.emplace_back(c);
+      problem.first_contact =
+          detail::one_of(*field, names, "the name of a ball in balls or a class of balls:");
+    }
+  }
 }
 
 // A pocket's name (kPocketNames) as its index; the table must have pockets.
@@ -409,13 +428,33 @@ physics::Vec2 read_position(const Mapping& root, std::string_view key, std::stri
   return detail::point(root.require(key, meaning));
 }
 
+// A count n (meaning [n, n]) or a range [lo, hi] of whole numbers, 0 <= lo <= hi <= 1000.
+void read_count_range(const Mapping& m, const char* key, int* lo, int* hi) {
+  const std::optional<Field> f = m.find(key);
+  if (!f) return;
+  constexpr int kMost = 1000;
+  if (f->value.IsSequence()) {
+    const auto bounds = detail::sequence(*f, 2, "a count n or a range [min, max]");
+    *lo = detail::whole_number(bounds[0], 0, kMost);
+    *hi = detail::whole_number(bounds[1], 0, kMost);
+    if (*lo > *hi)
+      detail::fail(*f, "min must not exceed max, got [" + bounds[0].value.Scalar() + ", " +
+                           bounds[1].value.Scalar() + "]");
+  } else {
+    *lo = *hi = detail::whole_number(*f, 0, kMost);
+  }
+}
+
 // limits.speed [min, max] m/s, spin, aim_deg (free | phi | [lo, hi]), cushions (n | [lo, hi]),
 // elevation_deg [min, max].
 Limits read_limits(const Mapping& root, FieldLines& lines) {
   Limits limits;
   const std::optional<Field> field = root.find("limits");
   if (!field) return limits;
-  const Mapping m(*field, {"speed", "spin", "aim_deg", "cushions", "elevation_deg"}, lines);
+  const Mapping m(*field,
+                  {"speed", "spin", "aim_deg", "cushions", "elevation_deg",
+                   "cushions_before_contact", "object_cushions"},
+                  lines);
 
   if (const std::optional<Field> speed = m.find("speed")) {
     const auto bounds = detail::sequence(*speed, 2, "[min, max] in m/s");
@@ -481,6 +520,10 @@ Limits read_limits(const Mapping& root, FieldLines& lines) {
       limits.cushions_min = limits.cushions_max = detail::whole_number(*cushions, 0, kMost);
     }
   }
+  read_count_range(m, "cushions_before_contact", &limits.cushions_before_contact_min,
+                   &limits.cushions_before_contact_max);
+  read_count_range(m, "object_cushions", &limits.object_cushions_min,
+                   &limits.object_cushions_max);
   return limits;
 }
 
@@ -490,7 +533,7 @@ Problem read_problem(const Field& document, const std::string& source) {
   const Mapping root(
       document,
       {"name", "table", "ball", "physics", "cue_ball", "target", "tolerance", "obstacles", "balls",
-       "limits", "max_strokes", "time_budget_s", "pot", "first_contact", "cue", "next"},
+       "limits", "max_strokes", "time_budget_s", "pot", "first_contact", "cue", "next", "leave"},
       lines);
   Problem problem;
   problem.source = source;
@@ -508,10 +551,12 @@ Problem read_problem(const Field& document, const std::string& source) {
   read_obstacles(root, problem, lines);
   read_balls(root, lines, scene);
   problem.cue_ball = read_position(root, "cue_ball", "the cue ball's centre [x, y] in m");
-  // With a pot the target may be left out: a pure pot, the cue ball free to stop anywhere.
-  if (root.find("target") || !root.find("pot"))
+  // With a pot the target may be left out: a pure pot, the cue ball free to stop anywhere;
+  // with a first_contact and no pot, an escape: a legal hit is all that is asked.
+  if (root.find("target") || !(root.find("pot") || root.find("first_contact")))
     problem.target = read_position(
-        root, "target", "where the cue ball should stop, [x, y] in m (optional with a pot)");
+        root, "target",
+        "where the cue ball should stop, [x, y] in m (optional with a pot or a first_contact)");
   else
     problem.has_target = false;
   if (const std::optional<Field> f = root.find("tolerance"))
@@ -525,8 +570,22 @@ Problem read_problem(const Field& document, const std::string& source) {
   read_next(root, lines, problem);
   // A pot may be played with or without cushions: [0, 3] unless the file says otherwise.
   const std::optional<Field> limits = root.find("limits");
-  if (problem.pot && !(limits && limits->value.IsMap() && limits->value["cushions"]))
+  const bool cushions_given = limits && limits->value.IsMap() && limits->value["cushions"];
+  if (problem.pot && !cushions_given) problem.limits.cushions_min = 0;
+  // An escape counts the cushions before the contact (cushions_before_contact); after it
+  // the cue ball may meet any number, unless the file says otherwise.
+  if (problem.is_escape() && !cushions_given) {
     problem.limits.cushions_min = 0;
+    problem.limits.cushions_max = 1000;
+  }
+  if (const std::optional<Field> f = root.find("leave")) {
+    if (!detail::is_word(*f, "safe"))
+      detail::fail(*f, "must be safe (the opponent left no easy pot), got " +
+                           detail::describe_value(f->value));
+    if (!problem.is_escape())
+      detail::fail(*f, "applies to an escape only (first_contact with no pot and no target)");
+    problem.leave_safe = true;
+  }
   // The physics' and the problem's own rules, on the finished problem.
   if (const physics::Validation error = validate(problem)) fail_on(*error, lines, root.line());
   return problem;

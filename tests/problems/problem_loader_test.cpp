@@ -1,5 +1,6 @@
 // Tests of the problem-file loader: the shipped examples, defaults, the mapping onto
 // the physics Scene, and one precise error (file, line, field) for each kind of bad input.
+#include "cueplan/problems/ball_names.hpp"
 #include "cueplan/problems/problem.hpp"
 
 #include <gtest/gtest.h>
@@ -21,12 +22,13 @@ namespace {
 namespace fs = std::filesystem;
 
 // The files directly in problems/ and in problems/pots/ (the examples with object balls
-// and a pot), as stems relative to problems/: "one_rail_position", "pots/plant_two_balls".
+// and a pot), problems/escapes/ and problems/banks/ (kicks, escapes, banks), as stems relative to problems/: "one_rail_position", "pots/plant_two_balls".
 std::vector<std::string> shipped_examples() {
   std::vector<std::string> names;
-  for (const char* dir : {"", "pots/"}) {
-    for (const auto& entry :
-         fs::directory_iterator(std::string(CUEPLAN_PROBLEMS_DIR) + "/" + dir)) {
+  for (const char* dir : {"", "pots/", "escapes/", "banks/"}) {
+    const std::string path = std::string(CUEPLAN_PROBLEMS_DIR) + "/" + dir;
+    if (!fs::is_directory(path)) continue;
+    for (const auto& entry : fs::directory_iterator(path)) {
       if (entry.path().extension() == ".yaml")
         names.push_back(std::string(dir) + entry.path().stem().string());
     }
@@ -137,7 +139,11 @@ TEST_P(ShippedProblem, WitnessShotInItsHeaderReachesTheTarget) {
   }
   if (p.first_contact) {
     ASSERT_GT(outcome.first_contact, 0);
-    EXPECT_EQ(outcome.balls[static_cast<size_t>(outcome.first_contact)].name, *p.first_contact);
+    EXPECT_TRUE(contact_allowed(*p.first_contact,
+                                outcome.balls[static_cast<size_t>(outcome.first_contact)].name,
+                                p.scene.balls))
+        << outcome.balls[static_cast<size_t>(outcome.first_contact)].name << " first, not "
+        << *p.first_contact;
   }
 }
 
@@ -466,7 +472,75 @@ TEST(ProblemValidate, PotAndFirstContactMustNameWhatIsOnTheTable) {
   EXPECT_EQ(file_field(validate(p)->field), "physics.ball_restitution");
 }
 
+TEST(ProblemValues, KickRangesFirstContactClassesAndEscapes) {
+  const Problem d = parse_ok(kPositions);
+  EXPECT_EQ(d.limits.cushions_before_contact_min, 0);
+  EXPECT_EQ(d.limits.cushions_before_contact_max, 3);
+  EXPECT_EQ(d.limits.object_cushions_min, 0);
+  EXPECT_EQ(d.limits.object_cushions_max, 2);
+  const Problem p = parse_ok(
+      "balls: {red1: [1.5, 0.9], red2: [2.0, 0.5], blue: [1.8, 1.2]}\nfirst_contact: any_red\n"
+      "cue_ball: [1, 1]\nleave: safe\nlimits: {cushions_before_contact: [1, 2], object_cushions: 1}\n");
+  EXPECT_EQ(p.limits.cushions_before_contact_min, 1);
+  EXPECT_EQ(p.limits.cushions_before_contact_max, 2);
+  EXPECT_EQ(p.limits.object_cushions_min, 1);
+  EXPECT_EQ(p.limits.object_cushions_max, 1);
+  EXPECT_TRUE(p.is_escape());
+  EXPECT_FALSE(p.has_target);
+  EXPECT_TRUE(p.leave_safe);
+  EXPECT_EQ(*p.first_contact, "any_red");
+  // After the contact an escape's cue ball may meet any number of cushions.
+  EXPECT_EQ(p.limits.cushions_min, 0);
+  EXPECT_GE(p.limits.cushions_max, 100);
+}
+
 // ---- Shots against a problem ---------------------------------------------------
+
+// A class of first contact: striking a ball outside it is a foul; the cushions before the
+// contact and the pot's ball's cushions are counted against their ranges.
+TEST(ProblemShotChecks, ClassFirstContactFoulsAndKickCushionCounts) {
+  Problem p = parse_ok(
+      "balls: {red1: [1.5, 0.9], blue: [2.0, 0.5]}\nfirst_contact: any_red\ncue_ball: [1, 1]\n");
+  physics::ShotResult r;
+  r.status = physics::ShotStatus::rest;
+  r.balls.resize(3);
+  r.balls[0].name = "cue";
+  r.balls[1].name = "red1";
+  r.balls[2].name = "blue";
+  physics::ShotEvent cushion;
+  cushion.type = physics::EventType::cushion;
+  physics::ShotEvent contact;
+  contact.type = physics::EventType::ball_contact;
+  r.balls[0].events = {cushion, contact, cushion};
+  r.first_contact = 2;
+  Verdict v = check_outcome(p, r);
+  EXPECT_EQ(v.failure, Failure::first_contact);
+  EXPECT_EQ(v.reason, "foul: first contact on blue (any_red asked for)");
+  r.first_contact = 1;
+  EXPECT_TRUE(check_outcome(p, r).solves()) << check_outcome(p, r).reason;
+  EXPECT_EQ(cushions_before_contact(r), 1);
+  p.limits.cushions_before_contact_max = 0;
+  v = check_outcome(p, r);
+  EXPECT_EQ(v.failure, Failure::cushions);
+  EXPECT_NE(v.reason.find("1 cushion before it strikes red1"), std::string::npos) << v.reason;
+  r.first_contact = -1;
+  EXPECT_EQ(check_outcome(p, r).failure, Failure::first_contact);
+  // A pot's ball off too many cushions.
+  Problem q = parse_ok("balls: {red1: [1.5, 0.9]}\npot: {ball: red1, pocket: top_left}\n"
+                       "limits: {object_cushions: [1, 1]}\ncue_ball: [1, 1]\n");
+  r.first_contact = 1;
+  r.balls[1].pocketed = true;
+  r.balls[1].pocket = 3;
+  r.balls[1].cushion_hits = 2;
+  v = check_outcome(q, r);
+  EXPECT_EQ(v.failure, Failure::cushions);
+  EXPECT_NE(v.reason.find("red1 meets 2 cushions before it drops, outside the allowed 1"),
+            std::string::npos)
+      << v.reason;
+  r.balls[1].cushion_hits = 1;
+  EXPECT_TRUE(check_outcome(q, r).solves()) << check_outcome(q, r).reason;
+}
+
 
 TEST(ProblemShotChecks, LimitsBoundSpeedSpinAndAimModuloTurns) {
   Limits l;
@@ -760,8 +834,31 @@ const BadInput kBadInputs[] = {
      "balls: {red: [1.5, 0.9], blue: [2.0, 0.9]}\nfirst_contact: bleu\ncue_ball: [1, 1]\n"
      "target: [2, 1]\n",
      2, "first_contact",
-     "must be the name of a ball in balls: red, blue, got \"bleu\" (did you "
+     "must be the name of a ball in balls or a class of balls: red, blue, any_red, lowest, solids, "
+     "stripes, any_colour, got \"bleu\" (did you "
      "mean blue?)"},
+    {"CushionsBeforeContactBackwards",
+     "limits: {cushions_before_contact: [3, 1]}\ncue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n", 1,
+     "limits.cushions_before_contact", "min must not exceed max, got [3, 1]"},
+    {"CushionsBeforeContactNegative",
+     "limits: {cushions_before_contact: -1}\ncue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n", 1,
+     "limits.cushions_before_contact", "must lie in [0, 1000], got -1"},
+    {"ObjectCushionsNotWhole", "limits: {object_cushions: [0, 1.5]}\ncue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n",
+     1, "limits.object_cushions[1]", "must be a whole number, got 1.5"},
+    {"ObjectCushionsThreeNumbers",
+     "limits: {object_cushions: [0, 1, 2]}\ncue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n", 1,
+     "limits.object_cushions", "a count n or a range [min, max]"},
+    {"FirstContactClassWithNoMember",
+     "balls: {red: [1.5, 0.9]}\nfirst_contact: stripes\ncue_ball: [1, 1]\n", 2, "first_contact",
+     "names the class stripes, but no ball in balls belongs to it"},
+    {"LeaveNotSafe",
+     "balls: {red: [1.5, 0.9]}\nfirst_contact: any_red\ncue_ball: [1, 1]\nleave: open\n", 4,
+     "leave", "must be safe"},
+    {"LeaveSafeWithATarget",
+     "balls: {red: [1.5, 0.9]}\nfirst_contact: red\nleave: safe\ncue_ball: [1.0, 1.0]\ntarget: [2.0, 1.0]\n", 3,
+     "leave", "applies to an escape only"},
+    {"EscapeWithoutFirstContact", "balls: {red: [1.5, 0.9]}\ncue_ball: [1, 1]\n", 1, "target",
+     "optional with a pot or a first_contact"},
     {"FirstContactWithoutBalls", "first_contact: red\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
      "first_contact", "names an object ball, but the file has no balls"},
     {"NextWithoutAPot",

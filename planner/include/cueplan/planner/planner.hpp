@@ -166,7 +166,8 @@ enum class PlanStatus {
   no_solution_found,  // every local polish converged (or stopped improving) short of the
                       // target: a strong hint that none exists, not a proof (message says why)
   budget_exhausted,   // evaluations or time ran out before a solution was found
-  unreachable,        // proved impossible from the geometry (a screened pot); message says why
+  unreachable,        // no direct, kick or bank route exists within the limits (each family
+                      // screened or off the cushions; ruled_out and the message say why)
   invalid_input,      // nothing searched; message names the field
 };
 const char* to_string(PlanStatus status);
@@ -257,6 +258,10 @@ struct PlannedShot {
   std::string failure_reason;
   std::optional<PotReport> pot;      // pot problems: the pot of the reported strokes
   std::optional<NextReport> next;    // problems with `next`: what the landing leaves
+  // The route in a player's words (problems that name a ball to strike: pots, escapes):
+  // "one cushion off the top cushion, right-hand side, to hit the red full; the red
+  // doubles off the bottom cushion into the top middle pocket". Set on reported strokes.
+  std::string route_words;
   physics::ImpactMethod impact_method = physics::ImpactMethod::exact;  // that gave this outcome
 };
 
@@ -275,6 +280,11 @@ struct PlanResult {
   int converged_searches = 0;        // of those, ended by their tolerances or stalled (not cut by a budget)
   // Problems with `next`: the position field the strokes were judged by (for the zone).
   std::shared_ptr<const PositionField> position_field;
+  // Kicks, banks and escapes: the route families (by cushions before the contact and,
+  // for a pot, the object ball's cushions) with no clear route, each with why: "direct:
+  // no direct pot: ...", "one cushion: 12 mirror lines: 12 screened by red2, blue".
+  std::vector<std::string> ruled_out;
+  int kick_routes = 0;               // clear kick or bank routes the geometry allowed (tried cheapest first)
 };
 
 // The next pot from `landing` in a player's terms (a problem with `next`, its field).

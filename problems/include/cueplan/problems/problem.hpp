@@ -48,6 +48,13 @@ struct Limits {
   // says otherwise; the planner plays the least elevation allowed.
   double elevation_min_deg = 0.0;
   double elevation_max_deg = 0.0;
+  // Kicks and banks: the cushions the cue ball may meet before its first ball contact,
+  // and those the pot's ball may meet before it drops (0 <= min <= max). A kick or an
+  // escape off up to three cushions, a bank or double off up to two, by default.
+  int cushions_before_contact_min = 0;
+  int cushions_before_contact_max = 3;
+  int object_cushions_min = 0;
+  int object_cushions_max = 2;
 };
 
 // An object ball into a pocket: what a pot-and-position shot is to do.
@@ -72,8 +79,9 @@ struct Problem {
   physics::Vec2 cue_ball;  // m, table frame; checked with Scene::check_position
   physics::Vec2 target;    // m, where the cue ball should come to rest; checked with
                            // Scene::check_rest_position (object balls may move away)
-  // False for a pure pot (a file with `pot` and no `target`): the cue ball may come to
-  // rest anywhere, and `target` is unused. Only a problem with a pot may lack a target.
+  // False for a pure pot (a file with `pot` and no `target`) or an escape (a file with
+  // `first_contact` and neither `pot` nor `target`: a legal hit is all it asks): the cue
+  // ball may come to rest anywhere, and `target` is unused.
   bool has_target = true;
   double tolerance = kDefaultTolerance;  // m, radius of the landing zone; > 0
   Limits limits;
@@ -85,6 +93,8 @@ struct Problem {
   // For pot-and-position planning: the pot the shot is to make, and the object ball the
   // cue ball must strike first (required_first_contact() gives the default, the pot's ball).
   std::optional<Pot> pot;
+  // A ball's name or a class of balls (ball_names.hpp: any_red, lowest, solids, stripes,
+  // any_colour): a first contact on any other ball is a foul.
   std::optional<std::string> first_contact;
   // Position play (`next`): the pots to be played after this one, in order (at most
   // kMostNextPots; empty: none). The stroke is judged by how well it leaves the cue ball
@@ -95,10 +105,15 @@ struct Problem {
   // Names of the obstacles (`obstacles` written as a mapping), in Scene::obstacles'
   // order; empty when the file lists them as points.
   std::vector<std::string> obstacle_names;
+  // `leave: safe`: an escape should also leave the opponent no easy pot from where the
+  // cue ball stops (the planner ranks escapes by it after the legal hit).
+  bool leave_safe = false;
 
   // The ball the cue ball must strike first: first_contact, else the pot's ball; empty
   // when neither is given (any ball, or none).
   std::string required_first_contact() const;
+  // An escape: a first contact asked for with no pot and no target.
+  bool is_escape() const { return first_contact.has_value() && !pot && !has_target; }
 };
 
 // Empty when the problem can be planned; otherwise the first broken rule, fields named
@@ -187,8 +202,11 @@ struct Verdict {
 
 // The conditions on the outcome alone (every condition but the stroke's limits):
 //   the shot ended with every ball at rest (no obstacle touched, cue ball not pocketed);
-//   the cue ball's first ball contact is required_first_contact(), when there is one;
-//   with a pot: its ball dropped in its pocket and no other ball dropped;
+//   the cue ball's first ball contact is required_first_contact(), when there is one (a
+//   ball, or one of a class: "foul: first contact on X" otherwise), after
+//   limits.cushions_before_contact cushions;
+//   with a pot: its ball dropped in its pocket, after limits.object_cushions cushions,
+//   and no other ball dropped;
 //   the cue ball met limits.cushions_min..cushions_max cushions;
 //   with a target: the cue ball rests within `tolerance` of it.
 // Without a pot or first_contact these are the conditions of reaches_target.
@@ -221,6 +239,9 @@ double miss_distance(const Problem& problem, const physics::ShotResult& result);
 // number of cushion contacts within [cushions_min, cushions_max].
 bool reaches_target(const Problem& problem, const physics::ShotResult& result);
 
+// The cushions (rails, not jaws) the cue ball meets before its first ball contact (all
+// it meets when it strikes no ball).
+int cushions_before_contact(const physics::ShotResult& result);
 // True when the outcome makes the problem's pot (the ball in that pocket); false when
 // the problem has none.
 bool makes_pot(const Problem& problem, const physics::ShotResult& result);
