@@ -45,7 +45,7 @@ double ms_since(Clock::time_point t) {
   return 1e3 * std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-// A black at a random clear place, into the pocket its field rates best; false when
+// A black at a random clear place, into the pocket whose zone is largest; false when
 // no place was found.
 bool make_position_play(problems::Problem* p, std::mt19937_64& rng, const planner::NoiseModel& noise) {
   const physics::Scene& s = p->scene;

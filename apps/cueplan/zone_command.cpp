@@ -186,7 +186,8 @@ int ZoneCommand::run(std::ostream& out, std::ostream& err) const {
         d.dots.push_back({l.position,
                           l.potted ? draw::Colour::hex("#fbfbf5") : draw::Colour::hex("#404040"),
                           2.5, draw::Colour::hex("#202020")});
-      d.dots_legend = fmt::format("where {} noisy strokes stop (dark: the pot missed)", args_.cloud);
+      d.dots_legend = fmt::format("where {} noisy strokes stop (white: the pot made, dark: missed)",
+                                  args_.cloud);
     }
     std::string caption = fmt::format("{}: {}, aim {:.4g}\u00b0.", plan::to_string(planned->status),
                                       plan::describe_stroke(b.shot), b.shot.aim_deg);

@@ -388,6 +388,9 @@ std::vector<detail::LegendEntry> legend_entries(const TableScene& scene, const L
     const TableDot dot = scene.dots.back();  // drawn last, on top
     entries.push_back({[dot](Canvas& c, double x, double y) {
                          c.fill(Path().circle(x, y, dot.radius + 0.5), dot.colour, "legend-symbol");
+                         if (dot.outline)
+                           c.stroke(Path().circle(x, y, dot.radius + 0.5), Pen{*dot.outline, 1.0},
+                                    "legend-symbol");
                        },
                        scene.dots_legend});
   }

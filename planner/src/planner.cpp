@@ -544,7 +544,7 @@ class Planning {
         result_.evaluations += p.evaluations;
         spent += p.evaluations;
         timed_out_ = timed_out_ || detail::out_of_time(p.code);
-        solved = solved || p.best.score <= problem_.tolerance;
+        solved = solved || p.best.score <= task.landing_score();
         if (!continuing) {
           polished_.push_back(p);
           continue;
@@ -597,7 +597,7 @@ class Planning {
                             std::max(1e-6, refine_seconds_left()), stream, held);
     *simulations += p.evaluations;
     Final f = describe_shot(task, p.best.shot, simulations);
-    if (verify_ && !f.shot.solves && p.best.score <= problem_.tolerance && refine_seconds_left() > 0.0) {
+    if (verify_ && !f.shot.solves && p.best.score <= task.landing_score() && refine_seconds_left() > 0.0) {
       const Polish again = polish(task, options_, exact_, p.best.shot, kVerifyEvaluations,
                                   refine_seconds_left(), stream + kVerifyStream, held);
       *simulations += again.evaluations;
@@ -617,7 +617,7 @@ class Planning {
     for (size_t i = 0; i < polished_.size(); ++i) {
       const physics::Shot shot = polished_[i].best.shot;
       Final f = described(task, shot);
-      if (verify_ && !f.shot.solves && polished_[i].best.score <= problem_.tolerance &&
+      if (verify_ && !f.shot.solves && polished_[i].best.score <= task.landing_score() &&
           refine_seconds_left() > 0.0) {
         const Polish again = polish(task, options_, exact_, shot, kVerifyEvaluations,
                                     refine_seconds_left(), kVerifyStream + i);

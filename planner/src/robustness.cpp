@@ -237,9 +237,19 @@ Success success_of(const Task& task, const std::vector<uint8_t>& outcomes,
       const double m = on_target;
       next.p = sum / m;
       const double var = std::max(0.0, sum2 / m - next.p * next.p);
-      const double half = 1.959963984540054 * std::sqrt(var / m) + kFieldError;
-      next.low = std::max(0.0, next.p - half);
-      next.high = std::min(1.0, next.p + half);
+      const double half = 1.959963984540054 * std::sqrt(var / m);
+      // The band the next pot's chance lies in for the middle 80 % of the landings (where
+      // the player will in fact be left), never narrower than the mean's 95 % interval,
+      // widened by the closed form's allowance.
+      std::vector<double> landed;
+      for (size_t i = 0; i < outcomes.size(); ++i)
+        if ((outcomes[i] & kOnTarget) != 0) landed.push_back(i < next_p.size() ? next_p[i] : 0.0);
+      std::sort(landed.begin(), landed.end());
+      const auto quantile = [&](double q) {
+        return landed[static_cast<size_t>(std::lround(q * static_cast<double>(landed.size() - 1)))];
+      };
+      next.low = std::max(0.0, std::min(next.p - half, quantile(0.1)) - kFieldError);
+      next.high = std::min(1.0, std::max(next.p + half, quantile(0.9)) + kFieldError);
     }
     s.next = next;
   }

@@ -42,13 +42,20 @@ struct Task {
   std::shared_ptr<const PositionField> next_field;
 
   // The position term of the nominal score: for a problem with a next pot and no target,
-  // tolerance x (1 - value / best value) at a landing that pots cleanly (else 0), so that
-  // the search steers the cue ball toward the zone as it steers it toward a target.
+  // kNextScale x (1 - value / best value) at the landing (m, as the miss distance it
+  // stands for; below the pot's penalty, so a pot always scores better than a miss), so
+  // that the search steers the cue ball toward the zone as it steers it toward a target.
+  static constexpr double kNextScale = 0.25;  // m
+  // The nominal score at or below which a stroke does what the problem asks (the target's
+  // tolerance; with position play and no target, any pot: below kNextScale plus a hair).
+  double landing_score() const {
+    return next_field && !problem.has_target ? kNextScale + 1e-9 : problem.tolerance;
+  }
   double next_score(const physics::ShotResult& result) const {
     if (!next_field || problem.has_target || result.status != physics::ShotStatus::rest) return 0.0;
     const double best = next_field->best_value();
     if (!(best > 0.0)) return 0.0;
-    return problem.tolerance * (1.0 - std::min(1.0, next_field->value(result.final_position) / best));
+    return kNextScale * (1.0 - std::min(1.0, next_field->value(result.final_position) / best));
   }
 };
 

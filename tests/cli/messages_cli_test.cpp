@@ -64,7 +64,7 @@ const FileCase kFileCases[] = {
      "2: cue_ball: lies inside the bottom_left pocket"},
     {"MisspeltKey", "cue_ball: [1,1]\ntarget: [2,1]\ntolerence: 0.1\n",
      "3: tolerence: unknown key; expected one of name, table, ball, physics, cue_ball, target, "
-     "tolerance, obstacles, balls, limits, max_strokes, time_budget_s, pot, first_contact, cue (did "
+     "tolerance, obstacles, balls, limits, max_strokes, time_budget_s, pot, first_contact, cue, next (did "
      "you mean tolerance?)"},
     {"BallOffTable",
      "balls:\n  red: [1.5,0.9]\n  blue: [3.6,0.9]\ncue_ball: [1,1]\ntarget: [2,1]\n",
