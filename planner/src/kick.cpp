@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <set>
 
@@ -82,10 +80,6 @@ struct Blocks {
   int too_thin = 0;
 };
 
-std::string ball_label(const physics::Scene& scene, int obstacle) {
-  (void)scene;
-  return fmt::format("obstacle {}", obstacle);
-}
 
 class Geometry {
  public:
@@ -106,7 +100,7 @@ class Geometry {
     for (const physics::ObjectBall& b : scene_.balls)
       if (!skip.count(b.name) && near(b.position)) return b.name;
     for (size_t i = 0; i < scene_.obstacles.size(); ++i)
-      if (near(scene_.obstacles[i])) return ball_label(scene_, static_cast<int>(i));
+      if (near(scene_.obstacles[i])) return fmt::format("obstacle {}", i);
     if (!skip_cue && near(problem_.cue_ball)) return std::string("the cue ball");
     return std::nullopt;
   }
