@@ -114,6 +114,9 @@ void write_text(std::ostream& out, const prob::Problem& problem,
   line("success", success_text(options, b.success));
   line("route", route_text(problem.scene, b.route));
   if (!b.route_words.empty()) line("route in words", b.route_words);
+  if (b.opponent_pot)
+    line("leave", fmt::format("the easiest pot left to the opponent: {:.0f} % (leave: safe)",
+                              100.0 * *b.opponent_pot));
   line("family", b.family);
   for (const std::string& why : r.ruled_out) line("ruled out", why);
   const std::vector<ConstraintRow> rows = constraints(problem, b, options.enforce_rigid_limit);
@@ -202,6 +205,7 @@ nlohmann::ordered_json solve_json(const prob::Problem& problem,
   for (size_t i = 0; i < r.alternatives.size(); ++i)
     j["alternatives"][i]["route_words"] = r.alternatives[i].route_words;
   j["ruled_out"] = r.ruled_out;
+  if (r.best.opponent_pot) j["opponent_pot"] = *r.best.opponent_pot;
   j["target"] = problem.has_target ? point_json(problem.target) : ordered_json();
   j["tolerance"] = problem.tolerance;
   j["cue_ball"] = point_json(problem.cue_ball);
@@ -330,7 +334,9 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
                 tip_offset_words(b.shot).c_str());
   d.caption.push_back(buf);
   std::string outcome;
-  if (!problem.has_target && b.outcome == phys::ShotStatus::rest) {
+  if (std::isfinite(b.miss_distance) && problem.is_escape()) {
+    outcome = "The cue ball comes to rest after " + route_text(problem.scene, b.route);
+  } else if (!problem.has_target && b.outcome == phys::ShotStatus::rest) {
     outcome = fmt::format("Stops at x = {:.3f} m, y = {:.3f} m after {}", b.final_position.x,
                           b.final_position.y, route_text(problem.scene, b.route));
   } else if (std::isfinite(b.miss_distance)) {

@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <set>
 
@@ -82,10 +80,6 @@ struct Blocks {
   int too_thin = 0;
 };
 
-std::string ball_label(const physics::Scene& scene, int obstacle) {
-  (void)scene;
-  return fmt::format("obstacle {}", obstacle);
-}
 
 class Geometry {
  public:
@@ -106,7 +100,7 @@ class Geometry {
     for (const physics::ObjectBall& b : scene_.balls)
       if (!skip.count(b.name) && near(b.position)) return b.name;
     for (size_t i = 0; i < scene_.obstacles.size(); ++i)
-      if (near(scene_.obstacles[i])) return ball_label(scene_, static_cast<int>(i));
+      if (near(scene_.obstacles[i])) return fmt::format("obstacle {}", i);
     if (!skip_cue && near(problem_.cue_ball)) return std::string("the cue ball");
     return std::nullopt;
   }
@@ -576,8 +570,6 @@ std::vector<physics::Shot> solve_kick(const Task& task, const KickRoute& route,
     const double shrink = k > l.spin_max ? l.spin_max / k : 1.0;
     const double kt = kt0 * shrink, ks = ks0 * shrink;
     if (!tried.insert({kt, ks}).second) continue;
-    // A screened mirror line: only side can bend the cue ball round the screen.
-    if (route.screened && std::abs(ks) < 0.25) continue;
     for (double speed : speeds) {
       if (std::chrono::steady_clock::now() >= deadline ||
           static_cast<int>(solved.size()) >= keep)
@@ -707,6 +699,51 @@ std::string route_words(const problems::Problem& problem, const physics::Shot& s
   if (!off.empty()) s += fmt::format(" {} off {}", pool ? "banks" : "doubles", cushion_list(off));
   s += " into " + pocket_words(problem.scene, ball->pocket);
   return s;
+}
+
+double easiest_pot(const problems::Problem& problem, const physics::ShotResult& result,
+                   double aim_sigma_deg) {
+  if (result.status != physics::ShotStatus::rest || result.balls.empty()) return 0.0;
+  const physics::Scene& scene = problem.scene;
+  const double r = scene.radius();
+  const Vec2 cue = result.balls.front().final_position;
+  std::vector<Vec2> at;  // every ball left on the table, the cue ball first
+  at.push_back(cue);
+  for (size_t k = 1; k < result.balls.size(); ++k)
+    if (!result.balls[k].pocketed) at.push_back(result.balls[k].final_position);
+  const size_t balls_end = at.size();  // obstacles are in the way, never potted
+  for (const Vec2& o : scene.obstacles) at.push_back(o);
+  const auto clear = [&](Vec2 p, Vec2 q, size_t skip_a, size_t skip_b) {
+    const Vec2 d = sub(q, p);
+    const double len2 = dot(d, d);
+    for (size_t i = 0; i < at.size(); ++i) {
+      if (i == skip_a || i == skip_b) continue;
+      const double t = len2 > 0.0 ? std::clamp(dot(sub(at[i], p), d) / len2, 0.0, 1.0) : 0.0;
+      if (norm(sub(at[i], add(p, scale(d, t)))) < 2.0 * r) return false;
+    }
+    return true;
+  };
+  const double sigma = std::max(1e-6, aim_sigma_deg / kDeg);
+  double best = 0.0;
+  for (size_t b = 1; b < balls_end; ++b) {
+    for (const physics::Pocket& pocket : scene.pockets) {
+      const Vec2 to_pocket = sub(pocket.centre, at[b]);
+      const double d_op = norm(to_pocket);
+      if (!(d_op > 0.0)) continue;
+      const Vec2 dir = scale(to_pocket, 1.0 / d_op);
+      const Vec2 ghost = sub(at[b], scale(dir, 2.0 * r));
+      const Vec2 to_ghost = sub(ghost, cue);
+      const double d_cp = norm(to_ghost);
+      if (!(d_cp > 0.0)) continue;
+      const double cos_cut = dot(scale(to_ghost, 1.0 / d_cp), dir);
+      if (cos_cut < std::cos(75.0 / kDeg)) continue;
+      if (!clear(at[b], pocket.centre, b, b) || !clear(cue, ghost, 0, b)) continue;
+      const double margin = std::atan(std::max(0.0, pocket.radius - 0.5 * r) / d_op);
+      const double aim_margin = margin * 2.0 * r * cos_cut / d_cp;
+      best = std::max(best, std::erf(aim_margin / (std::sqrt(2.0) * sigma)));
+    }
+  }
+  return best;
 }
 
 }  // namespace cueplan::planner::detail

@@ -45,8 +45,9 @@ struct KickRoute {
   double cue_length = 0.0;     // m, the cue ball's path to the contact
   double object_length = 0.0;  // m, the pot's ball's path to its pocket
   double cut_deg = 0.0;        // a pot: the cut the route asks for
-  // The mirror line is screened by another ball (its bounces fall on the noses): played
-  // with side only, which bends the rebound off the mirror line and may clear the screen.
+  // The mirror line is screened by another ball (its bounces fall on the noses): the
+  // cushion's rebound (a rolling ball's angle is not the mirror's) and side bend the
+  // path off the mirror line, which may clear the screen.
   bool screened = false;
 };
 
@@ -55,7 +56,7 @@ struct KickFamilies {
   std::vector<KickRoute> routes;       // every clear route, cheapest family first
   std::vector<std::string> ruled_out;  // "one cushion: ..." for each family with no clear route
   // Cushion routes whose mirror lines only other balls screen, cheapest first: tried
-  // with side once the clear routes have failed.
+  // once the clear routes have failed.
   std::vector<KickRoute> screened;
   int families = 0;                    // families the limits allow (those searched)
 };
@@ -82,5 +83,15 @@ std::vector<physics::Shot> solve_kick(const Task& task, const KickRoute& route,
 // top middle pocket". Empty when the problem names no ball to strike.
 std::string route_words(const problems::Problem& problem, const physics::Shot& shot,
                         const physics::ShotResult& result);
+
+// What an escape leaves the opponent (`leave: safe`): the chance of the easiest direct
+// pot from where the cue ball stops, over every object ball left on the table and every
+// pocket whose lines (cue ball to ghost ball, ball to pocket) are two radii clear. A
+// simple estimate: the cue ball's aim may err by the object ball's angular margin at the
+// pocket (its capture radius over its distance) scaled by 2R cos(cut) over the cue
+// ball's distance, against a Gaussian aim error of `aim_sigma_deg`; cuts beyond 75 deg
+// count as no pot. 0 when the cue ball is not at rest on the table.
+double easiest_pot(const problems::Problem& problem, const physics::ShotResult& result,
+                   double aim_sigma_deg);
 
 }  // namespace cueplan::planner::detail

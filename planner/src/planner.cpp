@@ -315,6 +315,7 @@ class Planning {
       if (!unreachable_) {
         rank_stage(task);
         robust_stage(task);
+        leave_stage(task);
         report_stage(task);
       }
     }
@@ -399,12 +400,15 @@ class Planning {
     if (std::any_of(finals_.begin(), finals_.end(), [](const Final& f) { return f.shot.solves; }))
       return;
     const detail::KickFamilies families = detail::kick_families(problem_, problem_.is_escape());
-    if (screen_) result_.ruled_out.push_back("direct: " + screen_->reason);
+    const problems::Limits& l = problem_.limits;
+    const bool direct_allowed =
+        l.cushions_before_contact_min == 0 && (!problem_.pot || l.object_cushions_min == 0);
+    if (screen_ && direct_allowed) result_.ruled_out.push_back("direct: " + screen_->reason);
     for (const std::string& why : families.ruled_out) result_.ruled_out.push_back(why);
     result_.kick_routes = static_cast<int>(families.routes.size());
-    // Screened cushion routes, played with side only, once the clear ones have failed.
-    const bool side = problem_.limits.spin_max >= 0.25;
-    if (families.routes.empty() && !(side && try_routes(task, families.screened))) {
+    // Screened cushion routes, once the clear ones have failed: the rebound and side
+    // bend a kick off its mirror line, and may take it round the screen.
+    if (families.routes.empty() && !try_routes(task, families.screened)) {
       if (direct_search()) return;  // the direct search's answer stands
       result_.status = PlanStatus::unreachable;
       std::string why;
@@ -416,7 +420,7 @@ class Planning {
     }
     if (families.routes.empty()) return;  // solved round a screen, with side
     kick_tried_ = true;
-    if (!try_routes(task, families.routes) && side) try_routes(task, families.screened);
+    if (!try_routes(task, families.routes)) try_routes(task, families.screened);
   }
 
   // Plays `routes` in order until kKickFinals strokes solve or the refine deadline; the
@@ -808,6 +812,24 @@ class Planning {
     if (finals_.size() > keep) finals_.resize(keep);
   }
 
+  // `leave: safe`: each solved escape's leave judged from where its cue ball stops, and
+  // the escapes ranked by P(legal hit) times the chance the opponent misses the easiest
+  // pot left (stable: the coach's order breaks ties).
+  void leave_stage(const Task& task) {
+    if (!problem_.leave_safe || !any_solved_) return;
+    const double sigma = options_.noise.aim_deg * options_.noise.scale;
+    for (Final& f : finals_) {
+      const physics::ShotResult r = task.simulate(f.shot.shot, report_sim());
+      ++result_.evaluations;
+      f.shot.opponent_pot = detail::easiest_pot(problem_, r, sigma);
+    }
+    const auto value = [](const Final& f) {
+      return f.shot.success.both.p * (1.0 - f.shot.opponent_pot.value_or(0.0));
+    };
+    std::stable_sort(finals_.begin(), finals_.end(),
+                     [&](const Final& a, const Final& b) { return value(a) > value(b); });
+  }
+
   // 7. Robust mode: polish each solved shot for its chance under the noise.
   void robust_stage(const Task& task) {
     // A kick's aim is its own root, not the pot's ghost-ball aim the robust polish solves.
@@ -897,6 +919,7 @@ class Planning {
         ++result.evaluations;
         p->pot = detail::pot_report(task, *task.pot_aim, p->shot, r, report_sim(),
                                     &result.evaluations);
+        p->route_words = detail::route_words(problem_, p->shot, r);
       }
     }
     if (task.next_field) {
@@ -905,7 +928,7 @@ class Planning {
       for (PlannedShot& a : result.alternatives)
         a.next = next_report(problem_, *task.next_field, a.final_position);
     }
-    if (!problem_.required_first_contact().empty()) {
+    if (!task.pot_aim && !problem_.required_first_contact().empty()) {
       // The route of each reported stroke in a player's words (one simulation each).
       std::vector<PlannedShot*> reported{&result.best};
       for (PlannedShot& a : result.alternatives) reported.push_back(&a);
@@ -920,7 +943,7 @@ class Planning {
                                     describe_stroke(best.shot), mm(best.miss_distance), mm(tol));
     if (problem_.is_escape())
       where = fmt::format("{} ({}) {}", best.family, describe_stroke(best.shot),
-                          best.solves ? "makes a legal first contact (" + *problem_.first_contact + ")"
+                          best.solves ? "makes a legal hit (" + *problem_.first_contact + " first)"
                                       : "fails: " + best.failure_reason);
     if (problem_.pot) {
       const std::string pot = fmt::format("{} ({}) {} {} in the {} pocket", best.family,
@@ -933,7 +956,7 @@ class Planning {
                                 mm(best.miss_distance), mm(tol))
                   : pot;
     }
-    if (kicked_ && !best.route_words.empty()) where += " (" + best.route_words + ")";
+    if (kicked_ && !best.route_words.empty()) where += ": " + best.route_words + ",";
     const int searched = std::min<int>(options_.local_starts, static_cast<int>(starts_.size()));
     if (best.solves) {
       result.status = PlanStatus::solved;
@@ -944,6 +967,9 @@ class Planning {
             " and succeeds in {:.0f} % of strokes with a player's error (95 % interval {:.0f}-{:.0f} "
             "%)",
             100.0 * e.p, 100.0 * e.low, 100.0 * e.high);
+      if (best.opponent_pot)
+        result.message += fmt::format("; it leaves the opponent at best a {:.0f} % pot",
+                                      100.0 * *best.opponent_pot);
       if (e.samples > 0 && best.success.pot && (problem_.has_target || best.success.next))
         result.message += fmt::format("; the pot alone {:.0f} % ({:.0f}-{:.0f} %)",
                                       100.0 * best.success.pot->p, 100.0 * best.success.pot->low,

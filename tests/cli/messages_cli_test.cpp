@@ -64,8 +64,8 @@ const FileCase kFileCases[] = {
      "2: cue_ball: lies inside the bottom_left pocket"},
     {"MisspeltKey", "cue_ball: [1,1]\ntarget: [2,1]\ntolerence: 0.1\n",
      "3: tolerence: unknown key; expected one of name, table, ball, physics, cue_ball, target, "
-     "tolerance, obstacles, balls, limits, max_strokes, time_budget_s, pot, first_contact, cue, next (did "
-     "you mean tolerance?)"},
+     "tolerance, obstacles, balls, limits, max_strokes, time_budget_s, pot, first_contact, cue, "
+     "next, leave (did you mean tolerance?)"},
     {"BallOffTable",
      "balls:\n  red: [1.5,0.9]\n  blue: [3.6,0.9]\ncue_ball: [1,1]\ntarget: [2,1]\n",
      "3: balls.blue: (3.6, 0.9) lies off the table: its centre must be within [0.02406, 3.545] x "
@@ -87,8 +87,8 @@ const FileCase kFileCases[] = {
     {"MisspeltBallName",
      "balls: {red: [1.5,0.9], yellow: [2.5,0.9]}\nfirst_contact: yelow\ncue_ball: [1,1]\n"
      "target: [2,1]\n",
-     "2: first_contact: must be the name of a ball in balls: red, yellow, got \"yelow\" (did you "
-     "mean yellow?)"},
+     "2: first_contact: must be the name of a ball in balls or a class of balls: red, yellow, "
+     "any_red, lowest, solids, stripes, any_colour, got \"yelow\" (did you mean yellow?)"},
     {"UnknownPocket",
      "balls: {red: [1.5,0.9]}\npot: {ball: red, pocket: top_midle}\ncue_ball: [1,1]\n"
      "target: [2,1]\n",
@@ -104,10 +104,11 @@ const FileCase kFileCases[] = {
     {"FirstContactNamesTheCueBall",
      "balls: {red: [1.5,0.9]}\npot: {ball: red, pocket: top_left}\nfirst_contact: cue\n"
      "cue_ball: [1,1]\n",
-     "3: first_contact: must be the name of a ball in balls: red, got \"cue\""},
+     "3: first_contact: must be the name of a ball in balls or a class of balls: red, any_red, "
+     "lowest, solids, stripes, any_colour, got \"cue\""},
     {"TargetMissingWithoutAPot", "cue_ball: [1,1]\n",
      "1: target: missing; required: where the cue ball should stop, [x, y] in m (optional with a "
-     "pot)"},
+     "pot or a first_contact)"},
     {"BallFrictionTooHigh", "physics: {mu_ball: 1.5}\ncue_ball: [1,1]\ntarget: [2,1]\n",
      "1: physics.mu_ball: times physics.mu_slide must be below 2/7 for mathavan_2014: a larger "
      "friction could hold a ball's slip on the cloth at zero, which the model does not describe, "

@@ -484,18 +484,42 @@ TEST(SolvePotJson, ReportsThePotAndItsSuccessSplit) {
             static_cast<int>(std::lround(k.at("success").at("pot").at("p").get<double>() * 40)));
 }
 
-// A screened pot: status unreachable, the reason in the message, exit 1.
+// A screened pot with no kick or bank allowed: status unreachable, the reason in the
+// message and in ruled_out, exit 1.
 TEST(SolvePotJson, AScreenedPotIsUnreachable) {
   const std::string file = (scratch() / "screened.yaml").string();
   write_text(file,
              "balls: {red: [1.0, 1.0], blue: [0.6, 0.6]}\npot: {ball: red, pocket: bottom_left}\n"
-             "cue_ball: [1.5, 1.3]\n");
+             "cue_ball: [1.5, 1.3]\nlimits: {cushions_before_contact: 0, object_cushions: 0}\n");
   const ProcessResult run = cueplan("solve '" + file + "' " + kQuick + " --json");
   EXPECT_EQ(run.exit_code, 1) << run.err;
   const json j = parsed(run);
   EXPECT_EQ(j.at("status"), "unreachable");
   EXPECT_NE(j.at("message").get<std::string>().find("screened by blue"), std::string::npos)
       << j.at("message");
+  ASSERT_EQ(j.at("ruled_out").size(), 1u);
+  EXPECT_EQ(j.at("ruled_out")[0].get<std::string>().rfind("direct: ", 0), 0u);
+}
+
+// An escape: a legal hit off a cushion, the route in words in the text and the JSON, and
+// the direct line ruled out by the ball that screens it.
+TEST(SolvePotJson, AnEscapeReportsItsRouteAndWhatWasRuledOut) {
+  const std::string file = (scratch() / "escape.yaml").string();
+  write_text(file,
+             "balls: {red: [2.6, 1.18], blue: [1.7845, 0.889]}\nfirst_contact: any_red\n"
+             "cue_ball: [1.0, 0.6]\n");
+  const ProcessResult run = cueplan("solve '" + file + "' " + kQuick + " --json");
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const json j = parsed(run);
+  EXPECT_EQ(j.at("status"), "solved");
+  EXPECT_NE(j.at("route_words").get<std::string>().find("one cushion off the"), std::string::npos)
+      << j.at("route_words");
+  EXPECT_NE(j.at("route_words").get<std::string>().find("to hit the red"), std::string::npos);
+  ASSERT_GE(j.at("ruled_out").size(), 1u);
+  EXPECT_NE(j.at("ruled_out")[0].get<std::string>().find("screened by blue"), std::string::npos);
+  const ProcessResult text = cueplan("solve '" + file + "' " + kQuick);
+  EXPECT_NE(text.out.find("route in words  one cushion off the"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("ruled out       direct: "), std::string::npos) << text.out;
 }
 
 }  // namespace

@@ -146,11 +146,14 @@ TEST(PotPlannerTest, ReportsCutAndThrowAsTheGeometrySays) {
 }
 
 // A blue on the red's line to the pocket: no direct pot, and no stroke aimed anywhere
-// near the ghost ball pots the red cleanly (the proof checked by simulation).
+// near the ghost ball pots the red cleanly (the proof checked by simulation). The limits
+// allow no cushion before the contact and none off the red, so no kick or bank either
+// (with the default limits the planner plays it off cushions: kick_test.cpp).
 TEST(PotPlannerTest, AScreenedPotIsUnreachable) {
+  const std::string no_kicks = "limits: {cushions_before_contact: 0, object_cushions: 0}\n";
   const std::string screened =
       "balls: {red: [1.0, 1.0], blue: [0.6, 0.6]}\npot: {ball: red, pocket: bottom_left}\n"
-      "cue_ball: [1.5, 1.3]\n";
+      "cue_ball: [1.5, 1.3]\n" + no_kicks;
   const problems::Problem p = parsed(screened);
   const PlanResult r = plan(p, options());
   EXPECT_EQ(r.status, PlanStatus::unreachable) << r.message;
@@ -168,7 +171,7 @@ TEST(PotPlannerTest, AScreenedPotIsUnreachable) {
   // The cue ball's path blocked instead: a yellow between it and every ghost ball.
   const problems::Problem q = parsed(
       "balls: {red: [1.0, 1.0], yellow: [1.3, 1.3]}\npot: {ball: red, pocket: bottom_left}\n"
-      "cue_ball: [1.6, 1.6]\n");
+      "cue_ball: [1.6, 1.6]\n" + no_kicks);
   const PlanResult rq = plan(q, options());
   EXPECT_EQ(rq.status, PlanStatus::unreachable) << rq.message;
   EXPECT_NE(rq.message.find("the cue ball's path"), std::string::npos) << rq.message;

@@ -263,6 +263,10 @@ struct PlannedShot {
   // "one cushion off the top cushion, right-hand side, to hit the red full; the red
   // doubles off the bottom cushion into the top middle pocket". Set on reported strokes.
   std::string route_words;
+  // An escape with `leave: safe`: the chance (0..1) of the easiest direct pot this stroke
+  // leaves the opponent from where the cue ball stops (a geometric estimate under the aim
+  // noise; kick.hpp, easiest_pot). Empty otherwise.
+  std::optional<double> opponent_pot;
   physics::ImpactMethod impact_method = physics::ImpactMethod::exact;  // that gave this outcome
 };
 
