@@ -140,9 +140,9 @@ PositionField::PositionField(const physics::Scene& layout, std::vector<problems:
                 q.y < contact_offset_ || q.x > layout_.length - contact_offset_ ||
                 q.y > layout_.width - contact_offset_)
               continue;
-            const double s = dot(sub(q, t.centre), across);
-            lo = std::min(lo, s);
-            hi = std::max(hi, s);
+            const double side = dot(sub(q, t.centre), across);
+            lo = std::min(lo, side);
+            hi = std::max(hi, side);
           }
         if (hi < lo) break;  // no part on the cloth
         w = 0.5 * (hi - lo);
