@@ -88,48 +88,66 @@ namespace {
 
 // The position fields of single pots (PositionField, no grid), kept per layout of the
 // balls: the noisy strokes of one decision leave the same balls again and again, and
-// the look-ahead asks each layout's pots from several places. Thread-safe; owned by
-// the PositionValue that uses it.
+// the look-ahead asks each layout's pots from several places. A layout's fields are
+// built together when it is first met and never change after: reading them takes no
+// lock. Thread-safe; owned by the PositionValue that uses it.
 class PotFields {
  public:
+  // Every pot of one layout: fields[ball index x pockets + pocket], the balls as given.
+  struct Layout {
+    std::vector<physics::ObjectBall> balls;
+    size_t pockets = 0;
+    std::vector<PositionField> fields;
+
+    // P(pot balls[index] into `pocket`) from `cue`.
+    double chance(size_t index, int pocket, Vec2 cue) const {
+      return fields[index * pockets + static_cast<size_t>(pocket)].next_shot(cue).p;
+    }
+    // The index of `ball`, or balls.size() without it.
+    size_t index_of(const std::string& ball) const {
+      for (size_t i = 0; i < balls.size(); ++i)
+        if (balls[i].name == ball) return i;
+      return balls.size();
+    }
+  };
+
   PotFields(const physics::Scene& scene, const NoiseModel& noise) : scene_(scene), noise_(noise) {
     scene_.balls.clear();
   }
 
-  // P(pot `ball` into `pocket`) from `cue` with `balls` on the table (0 without the ball).
-  double chance(Vec2 cue, const std::string& ball, int pocket, const std::vector<physics::ObjectBall>& balls) {
-    const size_t pockets = scene_.pockets.size();
-    if (pocket < 0 || static_cast<size_t>(pocket) >= pockets) return 0.0;
-    size_t index = balls.size();
-    for (size_t i = 0; i < balls.size(); ++i)
-      if (balls[i].name == ball) index = i;
-    if (index == balls.size()) return 0.0;
-    Layout& layout = layout_of(balls);
-    const size_t slot = index * pockets + static_cast<size_t>(pocket);
-    std::shared_ptr<const PositionField> field;
+  const Layout& layout(const std::vector<physics::ObjectBall>& balls) {
+    const uint64_t h = hash_of(balls);
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      field = layout.fields[slot];
+      if (const Layout* l = find(h, balls)) return *l;
     }
-    if (!field) {
-      // Built outside the lock; two threads may build the same one (they agree).
-      physics::Scene s = scene_;
-      s.balls = balls;
-      auto built = std::make_shared<const PositionField>(
-          s, std::vector<problems::NextPot>{{ball, pocket}}, noise_, 0.02, FieldGrid::lazy);
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (!layout.fields[slot]) layout.fields[slot] = std::move(built);
-      field = layout.fields[slot];
-    }
-    return field->next_shot(cue).p;
+    // Built outside the lock; two threads may build the same one (the first kept wins).
+    auto built = std::make_unique<Layout>();
+    built->balls = balls;
+    built->pockets = scene_.pockets.size();
+    physics::Scene s = scene_;
+    s.balls = balls;
+    built->fields.reserve(balls.size() * built->pockets);
+    for (const physics::ObjectBall& b : balls)
+      for (size_t k = 0; k < built->pockets; ++k)
+        built->fields.emplace_back(s, std::vector<problems::NextPot>{{b.name, static_cast<int>(k)}}, noise_,
+                                   0.02, FieldGrid::lazy);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (const Layout* l = find(h, balls)) return *l;
+    layouts_[h].push_back(std::move(built));
+    return *layouts_[h].back();
+  }
+
+  // P(pot `ball` into `pocket`) from `cue` with `balls` on the table (0 without the ball
+  // or the pocket).
+  double chance(Vec2 cue, const std::string& ball, int pocket, const std::vector<physics::ObjectBall>& balls) {
+    if (pocket < 0 || static_cast<size_t>(pocket) >= scene_.pockets.size()) return 0.0;
+    const Layout& l = layout(balls);
+    const size_t i = l.index_of(ball);
+    return i < l.balls.size() ? l.chance(i, pocket, cue) : 0.0;
   }
 
  private:
-  struct Layout {
-    std::vector<physics::ObjectBall> balls;
-    std::vector<std::shared_ptr<const PositionField>> fields;  // ball index x pockets + pocket
-  };
-
   static uint64_t hash_of(const std::vector<physics::ObjectBall>& balls) {
     uint64_t h = 1469598103934665603ULL;  // FNV-1a
     const auto mix = [&h](const void* data, size_t n) {
@@ -143,25 +161,18 @@ class PotFields {
     }
     return h;
   }
-  static bool same(const std::vector<physics::ObjectBall>& a, const std::vector<physics::ObjectBall>& b) {
-    if (a.size() != b.size()) return false;
-    for (size_t i = 0; i < a.size(); ++i)
-      if (a[i].name != b[i].name || a[i].position.x != b[i].position.x || a[i].position.y != b[i].position.y)
-        return false;
-    return true;
-  }
-
-  Layout& layout_of(const std::vector<physics::ObjectBall>& balls) {
-    const uint64_t h = hash_of(balls);
-    const std::lock_guard<std::mutex> lock(mutex_);
-    std::vector<std::unique_ptr<Layout>>& bucket = layouts_[h];
-    for (const std::unique_ptr<Layout>& l : bucket)
-      if (same(l->balls, balls)) return *l;
-    auto l = std::make_unique<Layout>();
-    l->balls = balls;
-    l->fields.resize(balls.size() * scene_.pockets.size());
-    bucket.push_back(std::move(l));
-    return *bucket.back();
+  // Under the lock.
+  const Layout* find(uint64_t h, const std::vector<physics::ObjectBall>& balls) const {
+    const auto it = layouts_.find(h);
+    if (it == layouts_.end()) return nullptr;
+    for (const std::unique_ptr<Layout>& l : it->second) {
+      bool same = l->balls.size() == balls.size();
+      for (size_t i = 0; same && i < balls.size(); ++i)
+        same = l->balls[i].name == balls[i].name && l->balls[i].position.x == balls[i].position.x &&
+               l->balls[i].position.y == balls[i].position.y;
+      if (same) return l.get();
+    }
+    return nullptr;
   }
 
   physics::Scene scene_;  // the table; its balls come with each layout
@@ -194,13 +205,16 @@ PositionValue position_value(std::shared_ptr<PotFields> fields, const physics::S
     for (int depth = 0; depth < lookahead && !frontier.empty(); ++depth) {
       std::vector<Node> next;
       for (const Node& node : frontier) {
+        const PotFields::Layout& layout = fields->layout(node.balls);
         for (const std::string& ball : problems::balls_on(node.state, node.balls)) {
-          const physics::ObjectBall* ob = find_ball(node.balls, ball);
+          const size_t index = layout.index_of(ball);
+          if (index == layout.balls.size()) continue;
+          const physics::ObjectBall* ob = &node.balls[index];
           for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
             double p = 0.0;
             Vec2 from = node.places.front();
             for (const Vec2& place : node.places) {
-              const double q = fields->chance(place, ball, k, node.balls);
+              const double q = layout.chance(index, k, place);
               if (q > p) {
                 p = q;
                 from = place;
