@@ -89,8 +89,8 @@ const char* thickness_of(double cut_deg) {
 
 
 PositionField::PositionField(const physics::Scene& layout, std::vector<problems::NextPot> next,
-                             const NoiseModel& noise, double cell_m)
-    : layout_(layout), next_(std::move(next)), cell_(cell_m) {
+                             const NoiseModel& noise, double cell_m, FieldGrid grid)
+    : layout_(layout), next_(std::move(next)), cell_(cell_m), cells_(std::make_shared<Cells>()) {
   if (next_.empty()) throw std::invalid_argument("PositionField: no next pot");
   if (!(cell_m > 0.0)) throw std::invalid_argument("PositionField: cell_m must be positive");
   radius_ = layout_.radius();
@@ -163,37 +163,56 @@ PositionField::PositionField(const physics::Scene& layout, std::vector<problems:
 
   columns_ = std::max(1, static_cast<int>(std::ceil(layout_.length / cell_)));
   rows_ = std::max(1, static_cast<int>(std::ceil(layout_.width / cell_)));
-  const size_t cells = static_cast<size_t>(columns_) * static_cast<size_t>(rows_);
-  if (targets_.size() > 1) {
-    second_.resize(cells);
+  if (grid == FieldGrid::eager) (void)this->grid();
+}
+
+const std::vector<double>& PositionField::second() const {
+  std::call_once(cells_->second_once, [this] {
+    std::vector<double>& second = cells_->second;
+    if (targets_.size() < 2) return;
+    second.resize(static_cast<size_t>(columns_) * static_cast<size_t>(rows_));
     for (int j = 0; j < rows_; ++j)
       for (int i = 0; i < columns_; ++i)
-        second_[static_cast<size_t>(j) * columns_ + i] = shot_from(cell_centre(i, j), targets_[1]).p;
-  }
-  values_.resize(cells);
-  best_value_ = 0.0;
-  best_ = targets_.front().ghost;
-  for (int j = 0; j < rows_; ++j)
-    for (int i = 0; i < columns_; ++i) {
-      const double v = value(cell_centre(i, j));
-      values_[static_cast<size_t>(j) * columns_ + i] = v;
-      if (v > best_value_) {
-        best_value_ = v;
-        best_ = cell_centre(i, j);
+        second[static_cast<size_t>(j) * columns_ + i] = shot_from(cell_centre(i, j), targets_[1]).p;
+  });
+  return cells_->second;
+}
+
+const PositionField::Grid& PositionField::grid() const {
+  std::call_once(cells_->grid_once, [this] {
+    Grid& g = cells_->grid;
+    g.values.resize(static_cast<size_t>(columns_) * static_cast<size_t>(rows_));
+    g.best_value = 0.0;
+    g.best = targets_.front().ghost;
+    for (int j = 0; j < rows_; ++j)
+      for (int i = 0; i < columns_; ++i) {
+        const double v = value(cell_centre(i, j));
+        g.values[static_cast<size_t>(j) * columns_ + i] = v;
+        if (v > g.best_value) {
+          g.best_value = v;
+          g.best = cell_centre(i, j);
+        }
       }
-    }
-  int in = 0;
-  for (double v : values_) in += best_value_ > 0.0 && v >= zone_threshold();
-  zone_area_m2_ = in * cell_ * cell_;
+    int in = 0;
+    for (double v : g.values) in += g.best_value > 0.0 && v >= g.best_value - kZoneWidth;
+    g.zone_area_m2 = in * cell_ * cell_;
+  });
+  return cells_->grid;
 }
 
 PositionField PositionField::for_problem(const problems::Problem& problem, const NoiseModel& noise,
-                                         double cell_m) {
+                                         double cell_m, FieldGrid grid) {
   physics::Scene layout = problem.scene;
   if (problem.pot)
     std::erase_if(layout.balls,
                   [&](const physics::ObjectBall& b) { return b.name == problem.pot->ball; });
-  return PositionField(layout, problem.next, noise, cell_m);
+  return PositionField(layout, problem.next, noise, cell_m, grid);
+}
+
+double PositionField::pot_chance(const physics::Scene& layout, Vec2 cue, std::string_view ball,
+                                 int pocket, const NoiseModel& noise) {
+  const PositionField f(layout, {{std::string(ball), pocket}}, noise, 0.02, FieldGrid::lazy);
+  return f.next_shot(cue).p;
 }
 
 bool PositionField::path_clear(Vec2 a, Vec2 b, const std::string& skip, std::string* by) const {
@@ -320,7 +339,8 @@ double PositionField::reach_value(Vec2 cue, const Target& first) const {
   // The tangent line, on the cue ball's side of the object ball's path.
   const double side = cross(v, first.u) >= 0.0 ? -1.0 : 1.0;
   const Vec2 tangent = rotated(first.u, side * 0.5 * std::numbers::pi);
-  double best = grid_value(second_, first.ghost);  // stopped dead on a straight pot
+  const std::vector<double>& second = this->second();
+  double best = grid_value(second, first.ghost);  // stopped dead on a straight pot
   for (int k = 0; k < kDirections; ++k) {
     // From follow (v) through the tangent to draw (-v).
     const double f = static_cast<double>(k) / (kDirections - 1);
@@ -336,7 +356,7 @@ double PositionField::reach_value(Vec2 cue, const Target& first) const {
         hit = hit || (o.name != first.ball && norm(sub(o.position, p)) < 2.0 * radius_);
       for (const Vec2& o : layout_.obstacles) hit = hit || norm(sub(o, p)) < 2.0 * radius_;
       if (hit) break;
-      best = std::max(best, grid_value(second_, p));
+      best = std::max(best, grid_value(second, p));
     }
   }
   return best;

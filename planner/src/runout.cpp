@@ -6,7 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <numbers>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
+
+#include "cueplan/planner/position.hpp"
 
 #include "cueplan/physics/parallel.hpp"
 #include "pot_aim.hpp"
@@ -26,27 +30,6 @@ double norm(Vec2 a) { return std::hypot(a.x, a.y); }
 Vec2 unit(Vec2 a) {
   const double n = norm(a);
   return n > 0.0 ? mul(a, 1.0 / n) : Vec2{1.0, 0.0};
-}
-
-// Distance from p to the segment [a, b].
-double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = sub(b, a);
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0.0 ? std::clamp(dot(sub(p, a), ab) / len2, 0.0, 1.0) : 0.0;
-  return norm(sub(p, add(a, mul(ab, t))));
-}
-
-// The direction out of the table into a pocket: its jaws' own, else from where it lies
-// (a corner's diagonal, a middle pocket's cushion normal).
-Vec2 pocket_axis(const physics::Scene& scene, const physics::Pocket& pocket) {
-  if (pocket.jaws) return pocket.jaws->inward;
-  const double tol = 0.1;
-  Vec2 a{0.0, 0.0};
-  if (pocket.centre.x < tol) a.x = -1.0;
-  if (pocket.centre.x > scene.length - tol) a.x = 1.0;
-  if (pocket.centre.y < tol) a.y = -1.0;
-  if (pocket.centre.y > scene.width - tol) a.y = 1.0;
-  return unit(a);
 }
 
 const physics::ObjectBall* find_ball(const std::vector<physics::ObjectBall>& balls, const std::string& name) {
@@ -94,51 +77,122 @@ bool parse_run_policy(const std::string& name, RunPolicy* policy) {
 
 double pot_chance_estimate(const physics::Scene& scene, Vec2 cue, const std::string& ball, int pocket,
                            const std::vector<physics::ObjectBall>& balls, const NoiseModel& noise) {
-  const physics::ObjectBall* target = find_ball(balls, ball);
-  if (target == nullptr || pocket < 0 || pocket >= static_cast<int>(scene.pockets.size())) return 0.0;
-  const physics::Pocket& P = scene.pockets[static_cast<size_t>(pocket)];
-  const double R = scene.radius();
-  const Vec2 b = target->position;
-  const Vec2 to = sub(P.centre, b);
-  const double d2 = norm(to);
-  if (d2 < 1e-9) return 0.0;
-  const Vec2 u = mul(to, 1.0 / d2);
-  const Vec2 g = sub(b, mul(u, 2.0 * R));
-  // The ghost ball must fit on the table.
-  const double edge = 0.9 * R;
-  if (g.x < edge || g.x > scene.length - edge || g.y < edge || g.y > scene.width - edge) return 0.0;
-  const Vec2 v = sub(g, cue);
-  const double d1 = norm(v);
-  const double cos_cut = d1 > 1e-9 ? dot(mul(v, 1.0 / d1), u) : 1.0;
-  if (cos_cut < std::cos(80.0 * std::numbers::pi / 180.0)) return 0.0;
-  // Screens: another ball on the cue ball's path or the object ball's.
-  const double clear = 2.0 * R;
-  for (const physics::ObjectBall& o : balls) {
-    if (o.name == ball) continue;
-    if (segment_distance(o.position, cue, g) < clear) return 0.0;
-    if (segment_distance(o.position, b, P.centre) < clear) return 0.0;
-  }
-  for (const Vec2& o : scene.obstacles)
-    if (segment_distance(o, cue, g) < clear || segment_distance(o, b, P.centre) < clear) return 0.0;
-  // The pocket's acceptance, narrower off its axis.
-  const double off_axis = std::max(0.15, dot(u, pocket_axis(scene, P)));
-  const double half_width = std::max(0.1 * R, P.radius * off_axis - 0.25 * R);
-  const double accept = std::atan2(half_width, d2);
-  // The object ball's direction error from the cue's aim error (deg -> rad), the cut
-  // magnifying it: the contact moves d1 * err across a ball of 2R.
-  const double aim = noise.scale * std::hypot(noise.aim_deg, 0.15) * std::numbers::pi / 180.0;
-  const double sigma = std::hypot(aim * std::max(d1, 0.1) / (2.0 * R * std::max(cos_cut, 0.2)),
-                                  0.005);
-  return std::erf(accept / (sigma * std::numbers::sqrt2));
+  if (find_ball(balls, ball) == nullptr || pocket < 0 || pocket >= static_cast<int>(scene.pockets.size()))
+    return 0.0;
+  physics::Scene layout = scene;
+  layout.balls = balls;
+  return PositionField::pot_chance(layout, cue, ball, pocket, noise);
 }
 
-PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& noise, int lookahead,
-                                int beam) {
+namespace {
+
+// The position fields of single pots (PositionField, no grid), kept per layout of the
+// balls: the noisy strokes of one decision leave the same balls again and again, and
+// the look-ahead asks each layout's pots from several places. A layout's fields are
+// built together when it is first met and never change after: reading them takes no
+// lock. Thread-safe; owned by the PositionValue that uses it.
+class PotFields {
+ public:
+  // Every pot of one layout: fields[ball index x pockets + pocket], the balls as given.
+  struct Layout {
+    std::vector<physics::ObjectBall> balls;
+    size_t pockets = 0;
+    std::vector<PositionField> fields;
+
+    // P(pot balls[index] into `pocket`) from `cue`.
+    double chance(size_t index, int pocket, Vec2 cue) const {
+      return fields[index * pockets + static_cast<size_t>(pocket)].next_shot(cue).p;
+    }
+    // The index of `ball`, or balls.size() without it.
+    size_t index_of(const std::string& ball) const {
+      for (size_t i = 0; i < balls.size(); ++i)
+        if (balls[i].name == ball) return i;
+      return balls.size();
+    }
+  };
+
+  PotFields(const physics::Scene& scene, const NoiseModel& noise) : scene_(scene), noise_(noise) {
+    scene_.balls.clear();
+  }
+
+  const Layout& layout(const std::vector<physics::ObjectBall>& balls) {
+    const uint64_t h = hash_of(balls);
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (const Layout* l = find(h, balls)) return *l;
+    }
+    // Built outside the lock; two threads may build the same one (the first kept wins).
+    auto built = std::make_unique<Layout>();
+    built->balls = balls;
+    built->pockets = scene_.pockets.size();
+    physics::Scene s = scene_;
+    s.balls = balls;
+    built->fields.reserve(balls.size() * built->pockets);
+    for (const physics::ObjectBall& b : balls)
+      for (size_t k = 0; k < built->pockets; ++k)
+        built->fields.emplace_back(s, std::vector<problems::NextPot>{{b.name, static_cast<int>(k)}}, noise_,
+                                   0.02, FieldGrid::lazy);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (const Layout* l = find(h, balls)) return *l;
+    layouts_[h].push_back(std::move(built));
+    return *layouts_[h].back();
+  }
+
+  // P(pot `ball` into `pocket`) from `cue` with `balls` on the table (0 without the ball
+  // or the pocket).
+  double chance(Vec2 cue, const std::string& ball, int pocket, const std::vector<physics::ObjectBall>& balls) {
+    if (pocket < 0 || static_cast<size_t>(pocket) >= scene_.pockets.size()) return 0.0;
+    const Layout& l = layout(balls);
+    const size_t i = l.index_of(ball);
+    return i < l.balls.size() ? l.chance(i, pocket, cue) : 0.0;
+  }
+
+ private:
+  static uint64_t hash_of(const std::vector<physics::ObjectBall>& balls) {
+    uint64_t h = 1469598103934665603ULL;  // FNV-1a
+    const auto mix = [&h](const void* data, size_t n) {
+      const auto* p = static_cast<const unsigned char*>(data);
+      for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
+    };
+    for (const physics::ObjectBall& b : balls) {
+      mix(b.name.data(), b.name.size());
+      mix(&b.position.x, sizeof b.position.x);
+      mix(&b.position.y, sizeof b.position.y);
+    }
+    return h;
+  }
+  // Under the lock.
+  const Layout* find(uint64_t h, const std::vector<physics::ObjectBall>& balls) const {
+    const auto it = layouts_.find(h);
+    if (it == layouts_.end()) return nullptr;
+    for (const std::unique_ptr<Layout>& l : it->second) {
+      bool same = l->balls.size() == balls.size();
+      for (size_t i = 0; same && i < balls.size(); ++i)
+        same = l->balls[i].name == balls[i].name && l->balls[i].position.x == balls[i].position.x &&
+               l->balls[i].position.y == balls[i].position.y;
+      if (same) return l.get();
+    }
+    return nullptr;
+  }
+
+  physics::Scene scene_;  // the table; its balls come with each layout
+  NoiseModel noise_;
+  std::mutex mutex_;
+  std::unordered_map<uint64_t, std::vector<std::unique_ptr<Layout>>> layouts_;
+};
+
+}  // namespace
+
+namespace {
+
+// The POSITION OBJECTIVE of position_estimate, on the fields `fields` keeps.
+PositionValue position_value(std::shared_ptr<PotFields> fields, const physics::Scene& scene, int lookahead,
+                             int beam) {
   lookahead = std::max(1, lookahead);
   beam = std::max(1, beam);
-  // POSITION OBJECTIVE (geometric estimate; the position field replaces it when merged).
-  return [scene, noise, lookahead, beam](Vec2 cue, const problems::GameState& state,
-                                         const std::vector<physics::ObjectBall>& balls) -> double {
+  return [scene, fields = std::move(fields), lookahead, beam](
+             Vec2 cue, const problems::GameState& state,
+             const std::vector<physics::ObjectBall>& balls) -> double {
     if (state.cleared) return 1.0;
     struct Node {
       double value = 1.0;
@@ -151,13 +205,16 @@ PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& n
     for (int depth = 0; depth < lookahead && !frontier.empty(); ++depth) {
       std::vector<Node> next;
       for (const Node& node : frontier) {
+        const PotFields::Layout& layout = fields->layout(node.balls);
         for (const std::string& ball : problems::balls_on(node.state, node.balls)) {
-          const physics::ObjectBall* ob = find_ball(node.balls, ball);
+          const size_t index = layout.index_of(ball);
+          if (index == layout.balls.size()) continue;
+          const physics::ObjectBall* ob = &node.balls[index];
           for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
             double p = 0.0;
             Vec2 from = node.places.front();
             for (const Vec2& place : node.places) {
-              const double q = pot_chance_estimate(scene, place, ball, k, node.balls, noise);
+              const double q = layout.chance(index, k, place);
               if (q > p) {
                 p = q;
                 from = place;
@@ -187,6 +244,15 @@ PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& n
   };
 }
 
+}  // namespace
+
+PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& noise, int lookahead,
+                                int beam) {
+  // P(each pot) from the position field (PositionField::next_shot), the fields kept per
+  // layout for as long as the returned function lives.
+  return position_value(std::make_shared<PotFields>(scene, noise), scene, lookahead, beam);
+}
+
 std::optional<RunShot> choose_stroke(const problems::Problem& layout, const problems::GameState& state,
                                      const std::vector<physics::ObjectBall>& balls, Vec2 cue,
                                      const RunoutOptions& options, uint64_t seed, int threads) {
@@ -197,8 +263,9 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
   base.first_contact.reset();
   base.pot.reset();
   const physics::Scene& scene = base.scene;
+  const auto fields = std::make_shared<PotFields>(scene, options.noise);
   const PositionValue value =
-      options.position ? options.position : position_estimate(scene, options.noise, options.lookahead);
+      options.position ? options.position : position_value(fields, scene, options.lookahead, 4);
 
   // Legal pots, the likeliest first, at most eight of them.
   struct Cand {
@@ -208,7 +275,7 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
   std::vector<Cand> cands;
   for (const std::string& ball : problems::balls_on(state, balls))
     for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
-      const double q = pot_chance_estimate(scene, cue, ball, k, balls, options.noise);
+      const double q = fields->chance(cue, ball, k, balls);
       if (q > 0.02) cands.push_back({{ball, k}, q});
     }
   std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.quick > b.quick; });
@@ -307,7 +374,7 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
     double p = 0.0;
     for (const std::string& ball : problems::balls_on(j.next, j.balls))
       for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
-        const double q = pot_chance_estimate(scene, r.final_position, ball, k, j.balls, options.noise);
+        const double q = fields->chance(r.final_position, ball, k, j.balls);
         if (q > p) {
           p = q;
           out.next_ball = ball + " into " + problems::pocket_name(scene, k);

@@ -146,6 +146,41 @@ TEST(PositionField, LookAheadLowersPositionsFromWhichTheThirdCannotBeReached) {
   EXPECT_GT(f2.best_value(), 0.5);
 }
 
+TEST(PositionField, ALazyGridAnswersAsTheEagerOneFromManyThreads) {
+  // One pot and a list of two: a lazy field (the grid filled at the first call that
+  // needs it, here from four threads at once) answers exactly as an eager one.
+  problems::Problem two = red_then_black(", blue: [1.7845, 0.889]");
+  two.next.push_back({"blue", 1});
+  for (const problems::Problem& p : {red_then_black(), two}) {
+    const PositionField eager = PositionField::for_problem(p, NoiseModel{});
+    const PositionField lazy = PositionField::for_problem(p, NoiseModel{}, 0.02, FieldGrid::lazy);
+    const Vec2 c = behind_black(eager, 0.6, 20.0);
+    std::vector<double> values(4), best(4);
+    std::vector<std::thread> threads;
+    for (size_t i = 0; i < values.size(); ++i)
+      threads.emplace_back([&, i] {
+        values[i] = i % 2 ? lazy.value(c) : lazy.next_shot(c).p;
+        best[i] = lazy.best_value();
+      });
+    for (std::thread& t : threads) t.join();
+    for (size_t i = 0; i < values.size(); ++i) {
+      EXPECT_EQ(values[i], i % 2 ? eager.value(c) : eager.next_shot(c).p);
+      EXPECT_EQ(best[i], eager.best_value());
+    }
+    EXPECT_EQ(lazy.zone_area_m2(), eager.zone_area_m2());
+    EXPECT_EQ(lazy.best().x, eager.best().x);
+    EXPECT_EQ(lazy.best().y, eager.best().y);
+    for (int j = 0; j < eager.rows(); j += 7)
+      for (int i = 0; i < eager.columns(); i += 7) EXPECT_EQ(lazy.cell_value(i, j), eager.cell_value(i, j));
+  }
+  // One pot's chance without a field kept: the field's P at that point.
+  const problems::Problem p = red_then_black();
+  const PositionField f = PositionField::for_problem(p, NoiseModel{});
+  const Vec2 c = behind_black(f, 0.5, 30.0);
+  EXPECT_EQ(PositionField::pot_chance(f.layout(), c, "black", p.next.front().pocket, NoiseModel{}),
+            f.next_shot(c).p);
+}
+
 TEST(PositionCache, BuildsOnceAndSharesBetweenThreads) {
   const problems::Problem p = red_then_black();
   PositionCache cache;

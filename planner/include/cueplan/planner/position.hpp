@@ -24,15 +24,19 @@
 //
 // value() is computed exactly at every call (a few microseconds); the field also keeps
 // the values on a grid of cells (2 cm) for what needs the whole table: the best value,
-// the zone (where value is within kZoneWidth of the best) and pictures.
+// the zone (where value is within kZoneWidth of the best) and pictures. The grid costs
+// a few milliseconds; a field built with FieldGrid::lazy fills it only when something
+// asks for it (the run-out planner asks thousands of fields for a few points each).
 //
-// Immutable once built: share it between threads. No globals, no hidden statics.
+// Immutable once built (a lazy grid is filled once, under std::call_once): share it
+// between threads. No globals, no hidden statics.
 #pragma once
 
 #include <map>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cueplan/physics/shot.hpp"
@@ -65,18 +69,29 @@ struct NextShot {
   bool valid_position = true;      // false off the table, in a pocket or inside a ball
 };
 
+// When the grid of cells is filled: in the constructor, or at the first call that needs
+// it (best_value, best, zone_area_m2, in_zone, zone_threshold, cell_value; with a list
+// of next pots value() and next_shot() need the second pot's grid, filled on their first
+// call). Either way every answer is the same.
+enum class FieldGrid { eager, lazy };
+
 class PositionField {
  public:
   // `layout`: the table and the balls as they will be for the next shot (the cue ball is
   // not among them); `next`: the pots in order (1 to problems::kMostNextPots), balls of
   // layout.balls and pockets of layout.pockets; `cell_m`: the grid's cell (m, > 0).
   PositionField(const physics::Scene& layout, std::vector<problems::NextPot> next,
-                const NoiseModel& noise, double cell_m = 0.02);
+                const NoiseModel& noise, double cell_m = 0.02, FieldGrid grid = FieldGrid::eager);
 
   // The field of a problem with `next`: its scene without the pot's ball (this stroke
   // pots it). The problem must have been validated and have a next pot.
   static PositionField for_problem(const problems::Problem& problem, const NoiseModel& noise,
-                                   double cell_m = 0.02);
+                                   double cell_m = 0.02, FieldGrid grid = FieldGrid::eager);
+
+  // P(pot `ball` into `pocket`) from a cue ball at `cue`, the other balls as `layout`
+  // has them (the field of that one pot, no grid): NextShot::p.
+  static double pot_chance(const physics::Scene& layout, physics::Vec2 cue, std::string_view ball,
+                           int pocket, const NoiseModel& noise);
 
   // The position's worth for position play: P(first next pot), times, with a list, the
   // best P(second) reachable from there. In [0, 1]; 0 where the cue ball cannot lie.
@@ -85,19 +100,21 @@ class PositionField {
   NextShot next_shot(physics::Vec2 cue, size_t index = 0) const;
 
   // Over the grid's cells: the best value and where (a cell's centre).
-  double best_value() const { return best_value_; }
-  physics::Vec2 best() const { return best_; }
+  double best_value() const { return grid().best_value; }
+  physics::Vec2 best() const { return grid().best; }
   // The zone: where value >= best_value() - kZoneWidth; its area (m^2, by cells).
-  double zone_area_m2() const { return zone_area_m2_; }
+  double zone_area_m2() const { return grid().zone_area_m2; }
   bool in_zone(physics::Vec2 cue) const { return value(cue) >= zone_threshold(); }
-  double zone_threshold() const { return best_value_ - kZoneWidth; }
+  double zone_threshold() const { return best_value() - kZoneWidth; }
 
   // The grid: columns along x, rows along y; cell (i, j) is centred at
   // ((i + 0.5) cell, (j + 0.5) cell); its value is value() there.
   int columns() const { return columns_; }
   int rows() const { return rows_; }
   double cell() const { return cell_; }
-  double cell_value(int i, int j) const { return values_[static_cast<size_t>(j) * columns_ + i]; }
+  double cell_value(int i, int j) const {
+    return grid().values[static_cast<size_t>(j) * columns_ + i];
+  }
   physics::Vec2 cell_centre(int i, int j) const { return {(i + 0.5) * cell_, (j + 0.5) * cell_}; }
 
   const std::vector<problems::NextPot>& next() const { return next_; }
@@ -118,6 +135,20 @@ class PositionField {
     bool clear = true;          // the object ball's path is clear
     std::string screened_by;
   };
+  // The grid, filled once (in the constructor, or lazily at the first call).
+  struct Grid {
+    std::vector<double> values;  // value() per cell
+    double best_value = 0.0;
+    physics::Vec2 best;
+    double zone_area_m2 = 0.0;
+  };
+  struct Cells {
+    std::once_flag second_once, grid_once;
+    std::vector<double> second;  // P(second next pot) per cell (lists only)
+    Grid grid;
+  };
+  const Grid& grid() const;
+  const std::vector<double>& second() const;
   NextShot shot_from(physics::Vec2 cue, const Target& t) const;
   double reach_value(physics::Vec2 cue, const Target& first) const;
   double grid_value(const std::vector<double>& grid, physics::Vec2 p) const;
@@ -133,11 +164,8 @@ class PositionField {
   double direction_sd_deg_ = 0.0;
   double cell_ = 0.02;
   int columns_ = 0, rows_ = 0;
-  std::vector<double> values_;   // value() per cell
-  std::vector<double> second_;   // P(second next pot) per cell (lists only)
-  double best_value_ = 0.0;
-  physics::Vec2 best_;
-  double zone_area_m2_ = 0.0;
+  // Shared by copies of the field (they answer alike): filled under its once_flags.
+  std::shared_ptr<Cells> cells_;
 };
 
 // Where a player's noisy strokes aimed at `shot` leave the cue ball: one entry per

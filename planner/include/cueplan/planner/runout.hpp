@@ -34,27 +34,26 @@ bool parse_run_policy(const std::string& name, RunPolicy* policy);
 
 // POSITION OBJECTIVE: the value of the cue ball at `cue` for the pot(s) to come, in
 // [0, 1], with `balls` on the table and the run at `state` (1 when the run is complete).
-// The run-out planner takes any such function; position_estimate() is its own cheap
-// geometric one, to be replaced by the position-play field (P(next pot) from a cue-ball
-// position) where that is available. It is called from many threads at once.
+// The run-out planner takes any such function; position_estimate() is its own, on the
+// position-play field (P(next pot) from a cue-ball position, position.hpp). It is called
+// from many threads at once.
 using PositionValue = std::function<double(physics::Vec2 cue, const problems::GameState& state,
                                            const std::vector<physics::ObjectBall>& balls)>;
 
-// The chance (roughly) that a player pots `ball` into `pocket` from `cue`: 0 when the
-// cut is beyond 80 degrees or another ball screens the cue ball's path to the ghost ball
-// or the ball's path to the pocket; otherwise the chance that the object ball's
-// direction error, grown from the noise's aim error by the distances and the cut, stays
-// within the pocket's acceptance seen from the ball (narrower when the ball comes at
-// the pocket off its axis).
+// The chance that a player with `noise` pots `ball` into `pocket` from `cue`, with
+// `balls` on the table: the position field's P(next pot) (PositionField::pot_chance;
+// docs/position.md): 0 when the cut is beyond kMostCut or a ball screens the cue ball's
+// path to the ghost ball or the ball's path to the pocket, or without that ball or pocket.
 double pot_chance_estimate(const physics::Scene& scene, physics::Vec2 cue, const std::string& ball,
                            int pocket, const std::vector<physics::ObjectBall>& balls,
                            const NoiseModel& noise);
 
-// The geometric POSITION OBJECTIVE with a look-ahead of `lookahead` pots (>= 1): the best
-// product over legal sequences of pot_chance_estimate, the first pot from `cue`, each later
-// one from the better of a few places the cue ball could be sent to from the previous
-// ball (its ghost ball, drawn back, followed through, or rolled either side), kept to
-// the `beam` best partial sequences at each depth.
+// The POSITION OBJECTIVE with a look-ahead of `lookahead` pots (>= 1): the best product
+// over legal sequences of the pots' chances (pot_chance_estimate, from position fields
+// built without their grid and kept per layout of the balls while the function lives),
+// the first pot from `cue`, each later one from the better of a few places the cue ball
+// could be sent to from the previous ball (its ghost ball, drawn back, followed through,
+// or rolled either side), kept to the `beam` best partial sequences at each depth.
 PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& noise, int lookahead,
                                 int beam = 4);
 
