@@ -15,6 +15,7 @@
 
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/planner/planner.hpp"
+#include "cueplan/planner/position.hpp"
 #include "cueplan/planner/runout.hpp"
 #include "cueplan/problems/game.hpp"
 #include "cueplan/planner/spin_map.hpp"
@@ -415,6 +416,31 @@ ApiReply answer(Body&& body) {
 
 }  // namespace
 
+namespace {
+
+// Position play: the next pot's field over the cloth, for the page to shade (as `cueplan
+// zone` draws it): P(next pot), with a list the look-ahead's worth, in each cell of the
+// field's grid, rounded to 0.001; row-major from y = 0, cell (i, j) centred at
+// ((i + 0.5) cell, (j + 0.5) cell); the zone is where the value is at least `threshold`.
+ordered_json zone_json(const prob::Problem& problem, const plan::PositionField& f) {
+  ordered_json values = ordered_json::array();
+  for (int j = 0; j < f.rows(); ++j)
+    for (int i = 0; i < f.columns(); ++i) values.push_back(std::round(1000.0 * f.cell_value(i, j)) / 1000.0);
+  const prob::NextPot& next = problem.next.front();
+  return {{"ball", next.ball},
+          {"pocket", prob::pocket_name(problem.scene, next.pocket)},
+          {"cell", f.cell()},
+          {"columns", f.columns()},
+          {"rows", f.rows()},
+          {"values", values},
+          {"threshold", f.zone_threshold()},
+          {"best_p", f.best_value()},
+          {"best", {f.best().x, f.best().y}},
+          {"area_m2", f.zone_area_m2()}};
+}
+
+}  // namespace
+
 ApiReply Api::solve(std::string_view body) const {
   return answer([&] {
     const ordered_json request = parse_body(body);
@@ -433,6 +459,8 @@ ApiReply Api::solve(std::string_view body) const {
       throw library_error(result.error, result.message);
     ApiReply reply;
     reply.body = solve_json(problem, options, result, "");
+    if (result.position_field && !problem.next.empty())
+      reply.body["zone"] = zone_json(problem, *result.position_field);
     if (in.time_clamped) reply.body["note"] = time_note(in, limits_);
     add_warnings(reply, problem);
     return reply;

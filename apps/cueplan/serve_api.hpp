@@ -3,7 +3,9 @@
 // without a socket. The answers are the command line's own `--json` objects
 // (solve_json, simulate_json, spinmap_json), built by the same functions.
 //
-//   POST /api/solve     {problem, options?}                  -> cueplan solve --json
+//   POST /api/solve     {problem, options?}                  -> cueplan solve --json, plus
+//                                                               `zone` with `next`: the
+//                                                               next pot's field, cell by cell
 //   POST /api/simulate  {problem, stroke, options?}          -> cueplan simulate --json
 //   POST /api/spinmap   {problem, speed?, aim_deg?, grid?, options?}
 //                                                            -> cueplan spinmap --json, plus

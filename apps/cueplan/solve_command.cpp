@@ -305,8 +305,7 @@ draw::TableScene drawing_of(const prob::Problem& problem, const plan::PlannerOpt
   const phys::ShotResult best = drawn_result(problem, b, options.simulation);
   for (size_t k = 1; k < best.balls.size(); ++k) {
     const phys::BallOutcome& ball = best.balls[k];
-    draw::DrawnBall drawn{ball.name, draw::ball_colour(ball.name).value_or(draw::Colour{0.85, 0.55, 0.2}),
-                          ball.start, {}};
+    draw::DrawnBall drawn = draw::named_ball(ball.name, ball.start);
     if (!ball.path.empty()) drawn.paths.push_back({ball.path, ball.events, false});
     // problem_table drew it where it stands: give that one its path rather than a twin.
     auto same = std::find_if(d.balls.begin(), d.balls.end(),

@@ -11,6 +11,7 @@
 
 #include "canvas.hpp"
 #include "cueplan/draw/spin_map.hpp"
+#include "cueplan/problems/ball_names.hpp"
 #include "label_placer.hpp"
 #include "legend.hpp"
 #include "palette.hpp"
@@ -241,6 +242,38 @@ void draw_ball(Canvas& c, double x, double y, double r, Colour colour, const cha
   if (r >= 5.0)  // a highlight, as light falls on a ball
     c.fill(Path().circle(x - 0.35 * r, y - 0.38 * r, 0.28 * r), detail::white().with_alpha(0.55),
            "");
+}
+
+// A pool ball as players know it: the number on a white disc at its middle, a stripe
+// (9-15) white with a band of its colour across it. Below 5 px of radius the number is
+// left out (it could not be read), the band kept.
+void draw_pool_ball(Canvas& c, const Typesetter& type, double x, double y, double r,
+                    const DrawnBall& ball, const char* role) {
+  const Colour white = detail::white();
+  const Pen edge{detail::darker(ball.striped ? white : ball.colour,
+                                ball.striped || ball.colour.r + ball.colour.g + ball.colour.b > 2.4
+                                    ? 0.6
+                                    : 0.45),
+                 1.0};
+  if (ball.striped) {
+    c.fill(Path().circle(x, y, r), white, role);
+    c.clip(Path().circle(x, y, r));
+    const double half = 0.55 * r;  // the band: about half the ball's height
+    c.fill(Path().rect(x - r, y - half, 2.0 * r, 2.0 * half), ball.colour, "ball-stripe");
+    c.unclip();
+    c.stroke(Path().circle(x, y, r), edge, "");
+  } else {
+    c.fill_and_stroke(Path().circle(x, y, r), ball.colour, edge, role);
+  }
+  if (r >= 5.0 && ball.number > 0) {
+    const double disc = 0.52 * r;
+    c.fill(Path().circle(x, y, disc), white, "ball-number-disc");
+    const Text t = type.set(std::to_string(ball.number),
+                            Font{std::max(0.8 * r * (ball.number >= 10 ? 0.78 : 0.95), 4.0), true});
+    c.text(t, x, y, {0.5, VAnchor::middle}, detail::ink(), "ball-number");
+  }
+  if (r >= 5.0)  // a highlight, as light falls on a ball
+    c.fill(Path().circle(x - 0.42 * r, y - 0.45 * r, 0.2 * r), white.with_alpha(0.5), "");
 }
 
 void draw_ghost(Canvas& c, double x, double y, double r, Colour colour, const char* role) {
@@ -934,7 +967,7 @@ void dots(Canvas& c, const Layout& l, const TableScene& scene) {
 // Stage: balls
 
 void balls(Canvas& c, const Layout& l, const TableScene& scene,
-           const std::vector<PlacedPath>& placed) {
+           const std::vector<PlacedPath>& placed, const Typesetter& type) {
   for (const PlacedPath& p : placed)
     for (const phys::ShotEvent& e : p.path->events)
       if (e.type == phys::EventType::cushion || e.type == phys::EventType::ball_contact) {
@@ -961,7 +994,10 @@ void balls(Canvas& c, const Layout& l, const TableScene& scene,
     }
   for (const DrawnBall& b : scene.balls) {
     const Point at = l.f.at(b.start);
-    draw_ball(c, at.x, at.y, l.ball, b.colour, "ball");
+    if (b.number > 0 || b.striped)
+      draw_pool_ball(c, type, at.x, at.y, l.ball, b, "ball");
+    else
+      draw_ball(c, at.x, at.y, l.ball, b.colour, "ball");
   }
 }
 
@@ -1150,18 +1186,32 @@ TableMarkings markings_for(const phys::Scene& scene) {
   return TableMarkings::none;
 }
 
+DrawnBall named_ball(const std::string& name, phys::Vec2 start) {
+  DrawnBall b{name, ball_colour(name).value_or(other_ball_colour()), start, {}};
+  const problems::BallIdentity id = problems::identify_ball(name);
+  const bool pool = id.kind == problems::BallKind::pool_solid ||
+                    id.kind == problems::BallKind::pool_eight ||
+                    id.kind == problems::BallKind::pool_stripe;
+  if (pool) {
+    b.number = id.number;
+    b.striped = id.striped;
+    if (const std::optional<Colour> c = ball_colour(std::to_string(id.number))) b.colour = *c;
+  }
+  return b;
+}
+
 TableScene problem_table(const problems::Problem& problem) {
   TableScene t;
   t.scene = problem.scene;
   if (problem.has_target) t.target = TargetZone{problem.target, problem.tolerance};
   t.balls.push_back({"cue ball", *ball_colour("cue ball"), problem.cue_ball, {}});
-  for (const phys::ObjectBall& b : problem.scene.balls)
-    t.balls.push_back({b.name, ball_colour(b.name).value_or(other_ball_colour()), b.position, {}});
+  for (const phys::ObjectBall& b : problem.scene.balls) t.balls.push_back(named_ball(b.name, b.position));
   for (size_t i = 0; i < problem.scene.obstacles.size(); ++i) {
     if (i < problem.obstacle_names.size()) {
       const std::string& name = problem.obstacle_names[i];
-      t.balls.push_back({name, ball_colour(name).value_or(*ball_colour("red")),
-                         problem.scene.obstacles[i], {}});
+      DrawnBall named = named_ball(name, problem.scene.obstacles[i]);
+      if (!ball_colour(name) && named.number == 0) named.colour = *ball_colour("red");
+      t.balls.push_back(std::move(named));
       continue;
     }
     t.balls.push_back(
@@ -1187,7 +1237,7 @@ std::shared_ptr<Canvas> draw_table(const TableScene& scene, const TableStyle& st
   target_zone(c, l, scene);
   paths(c, l, scene, placed, style);
   dots(c, l, scene);
-  balls(c, l, scene, placed);
+  balls(c, l, scene, placed, type);
   if (scene.target) {
     const Point at = l.f.at(scene.target->centre);
     draw_target_edge(c, at.x, at.y, std::max(finite_or(scene.target->radius, 0.0) * l.f.scale, 2.0),

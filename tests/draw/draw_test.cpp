@@ -520,6 +520,37 @@ TEST(Table, ObstaclesAreRedBallsWithNames) {
   EXPECT_EQ(ball_colour("8")->to_hex(), ball_colour("black")->to_hex());
 }
 
+TEST(Table, PoolBallsCarryTheirNumbersAndStripesTheirBand) {
+  prob::Problem problem = shipped("pots/pool_two_ball_position");
+  problem.scene.balls = {{"9", {2.05, 0.35}}, {"2", {0.9, 0.85}}, {"ball12", {0.6, 0.35}},
+                         {"8", {1.2, 0.5}}, {"red3", {1.8, 0.9}}};
+  const TableScene t = problem_table(problem);
+  ASSERT_EQ(t.balls.size(), 6u);
+  // The 9 is a stripe in the 1's yellow, the 12 in the 4's purple; the 2 and the 8 are
+  // solids; a snooker red keeps its colour by name, without a number.
+  EXPECT_TRUE(t.balls[1].striped);
+  EXPECT_EQ(t.balls[1].number, 9);
+  EXPECT_EQ(t.balls[1].colour.to_hex(), ball_colour("1")->to_hex());
+  EXPECT_FALSE(t.balls[2].striped);
+  EXPECT_EQ(t.balls[2].number, 2);
+  EXPECT_TRUE(t.balls[3].striped);
+  EXPECT_EQ(t.balls[3].number, 12);
+  EXPECT_EQ(t.balls[3].colour.to_hex(), ball_colour("4")->to_hex());
+  EXPECT_EQ(t.balls[4].number, 8);
+  EXPECT_EQ(t.balls[5].number, 0);
+  EXPECT_EQ(t.balls[5].colour.to_hex(), ball_colour("red")->to_hex());
+  EXPECT_EQ(t.balls[0].number, 0);
+  const Picture p = table_picture(t);
+  // One band for each stripe, one number disc and number for each pool ball, every ball
+  // still one "ball" mark.
+  EXPECT_EQ(count(p, "ball-stripe"), 2u);
+  EXPECT_EQ(count(p, "ball-number-disc"), 4u);
+  std::vector<std::string> numbers = texts(p, "ball-number");
+  std::sort(numbers.begin(), numbers.end());
+  EXPECT_EQ(numbers, (std::vector<std::string>{"12", "2", "8", "9"}));
+  EXPECT_EQ(count(p, "ball"), 6u);
+}
+
 TEST(Table, ObjectBallsStandInTheirColoursAndMoveAlongTheirPaths) {
   const prob::Problem problem = shipped("pots/plant_two_balls");
   const TableScene t = problem_table(problem);

@@ -16,6 +16,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <iostream>
@@ -299,6 +300,54 @@ TEST(ServeSolve, AnswersAsTheCommandLineDoes) {
                             "");
   EXPECT_EQ(comparable(a.body), comparable(cli));
   EXPECT_EQ(a.body["problem"]["source"], "request");
+}
+
+TEST(ServeSolve, PositionPlayAlsoGivesTheNextPotsFieldAsTheZoneCommandHasIt) {
+  TestServer server;
+  const json problem = example_problem(server, "pots/red_then_black.yaml");
+  const Answer a = post(server, "/api/solve", json{{"problem", problem}, {"options", quick_options(3)}});
+  ASSERT_EQ(a.status, 200) << a.raw;
+  ASSERT_TRUE(a.body.contains("zone")) << a.raw.substr(0, 400);
+  const json& z = a.body["zone"];
+  EXPECT_EQ(z["ball"], "black");
+  EXPECT_EQ(z["pocket"], "bottom_right");
+  const int columns = z["columns"], rows = z["rows"];
+  const double cell = z["cell"];
+  ASSERT_EQ(z["values"].size(), static_cast<size_t>(columns) * rows);
+  // The grid covers the cloth (3.569 x 1.778 m) in its cells.
+  EXPECT_NEAR(columns * cell, 3.569, cell);
+  EXPECT_NEAR(rows * cell, 1.778, cell);
+  // The zone is where the value is within 10 points of the best, its area the cells'; the
+  // best, the area and where it is are `cueplan zone`'s, and the plan's own report.
+  const double threshold = z["threshold"], best = z["best_p"];
+  EXPECT_NEAR(threshold, best - 0.1, 1e-12);
+  int inside = 0;
+  double largest = 0.0;
+  for (const json& v : z["values"]) {
+    const double value = v;
+    ASSERT_GE(value, 0.0);
+    ASSERT_LE(value, 1.0);
+    largest = std::max(largest, value);
+    inside += value >= threshold - 5e-4;  // the values are rounded to 0.001
+  }
+  EXPECT_NEAR(largest, best, 5e-4);
+  EXPECT_NEAR(inside * cell * cell, z["area_m2"].get<double>(), 0.05 * z["area_m2"].get<double>());
+  EXPECT_EQ(z["area_m2"], a.body["next"]["zone_area_m2"]);
+  const json zone = cli_json("zone '" + problem_path("pots/red_then_black") + "' --json --method exact --out " +
+                                 (std::filesystem::temp_directory_path() / "serve_zone_test.svg").string(),
+                             "");
+  EXPECT_EQ(z["best"], zone["best"]);
+  EXPECT_EQ(z["best_p"], zone["best_p"]);
+  EXPECT_EQ(z["area_m2"], zone["zone_area_m2"]);
+  // The rest of the answer is solve's.
+  json rest = a.body;
+  rest.erase("zone");
+  const json cli = cli_json("solve '" + problem_path("pots/red_then_black") + "' " + quick_flags(3) + " --json", "");
+  EXPECT_EQ(comparable(rest), comparable(cli));
+  // A problem without `next` has no zone.
+  const Answer plain = post(server, "/api/solve", json{{"problem", example_problem(server, "one_rail_position.yaml")},
+                                                       {"options", quick_options(3)}});
+  EXPECT_FALSE(plain.body.contains("zone"));
 }
 
 TEST(ServeSolve, ClampsTheSearchTimeToTheServersAndSaysSo) {

@@ -19,6 +19,12 @@ example, the balls, the stroke and the options; and loads the link at a phone's 
 (390 x 844) and a tablet's (768 x 1024): no sideways scrolling, the table full width above
 the controls on the phone.
 
+Position play: on "red then black" the next ball is offered beside the pot, and the plan
+shades the next pot's field on the table with the zone outlined (screenshots at a desk's
+1280 x 800 and a phone's 390 x 844). Plan the run: on pool balls (two stripes, drawn white
+with their band and number), the pattern's cue-ball paths numbered 1, 2, ..., then shot by
+shot, one path in full and the balls where that shot finds them.
+
 Exit 0 on success, 1 on a failure, 77 (skipped) when no browser or driver is installed.
 """
 import argparse
@@ -540,13 +546,124 @@ def check_error(driver, shots):
     Select(driver.find_element(By.ID, "example")).select_by_visible_text(first)
 
 
-def check_run(driver, shots):
-    # "Run out" on a pot example's ball: the sequence shot by shot, each shot's paths on
-    # the table, and how often the run clears under the noise.
-    Select(driver.find_element(By.ID, "example")).select_by_visible_text("straight pot into a corner")
-    wait_for(driver, "the object balls", lambda d: len(
-        d.find_elements(By.CSS_SELECTOR, "#table g.ball[aria-label^='red ball']")) == 1)
-    wait_for(driver, "the page to be idle", lambda d: not d.find_element(By.ID, "busy").is_displayed())
+def idle(driver):
+    wait_for(driver, "the page to be idle", lambda d: not d.find_element(By.ID, "busy").is_displayed(),
+             timeout=120)
+
+
+def at_size(driver, width, height, mobile=False):
+    driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                           {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": mobile})
+
+
+def no_sideways_scroll(driver, name):
+    scroll, inner = driver.execute_script(
+        "return [document.documentElement.scrollWidth, window.innerWidth];")
+    if scroll > inner:
+        fail(f"{name}: the page scrolls sideways ({scroll} px in {inner} px)")
+
+
+def check_next(driver, shots):
+    """Position play on the page: the next ball's choice beside the pot, the plan ranked by
+    the next pot, and the next pot's zone shaded and outlined on the table."""
+    at_size(driver, 1280, 800)
+    Select(driver.find_element(By.ID, "example")).select_by_visible_text("red then black")
+    idle(driver)
+    driver.execute_script("document.getElementById('seed').value = 1;")
+    ball = Select(driver.find_element(By.ID, "next-ball"))
+    pocket = Select(driver.find_element(By.ID, "next-pocket"))
+    if ball.first_selected_option.get_attribute("value") != "black" or \
+            pocket.first_selected_option.get_attribute("value") != "bottom_right":
+        fail("the next ball of 'red then black' is not offered as the file gives it: "
+             f"{ball.first_selected_option.text!r}, {pocket.first_selected_option.text!r}")
+    offered = [o.get_attribute("value") for o in ball.options]
+    if "red" in offered or "black" not in offered:
+        fail(f"the next ball offers {offered} (the pot's red is not a next ball)")
+    # Off and on again through the controls: the note follows, the table has no target.
+    ball.select_by_value("")
+    if driver.find_element(By.ID, "next-pocket").is_enabled():
+        fail("the next pocket stays enabled with no next ball")
+    ball.select_by_value("black")
+    pocket.select_by_value("bottom_right")
+    note = driver.find_element(By.ID, "next-note").text
+    if "black" not in note or "P(pot now and pot next)" not in note:
+        fail(f"the next ball's note says {note!r}")
+    if driver.find_elements(By.CSS_SELECTOR, "#table g.target circle.ring"):
+        fail("a target is drawn for a problem that plays position for the next ball")
+    driver.find_element(By.ID, "plan").click()
+    wait_for(driver, "the plan's stroke", lambda d: d.find_elements(By.ID, "stroke-words"), timeout=60)
+    idle(driver)
+    shade = wait_for(driver, "the zone shaded on the table",
+                     lambda d: d.find_elements(By.CSS_SELECTOR, "#table image.field-shade"))[0]
+    if not (shade.get_attribute("href") or "").startswith("data:image/png"):
+        fail("the zone's shade has no image")
+    outline = driver.find_element(By.CSS_SELECTOR, "#table path.zone-outline").get_attribute("d")
+    if outline.count("M") < 8:
+        fail(f"the zone's outline has {outline.count('M')} edges")
+    # The shade covers the cloth: its box is the field's grid, the table's size.
+    box = driver.execute_script("""
+        const i = document.querySelector('#table image.field-shade');
+        return [Number(i.getAttribute('width')), Number(i.getAttribute('height'))];""")
+    if not (3.5 < box[0] < 3.6 and 1.7 < box[1] < 1.8):
+        fail(f"the zone's shade is {box} m, not the snooker table's cloth")
+    # The shade is drawn: some pixels of the table differ from the plain cloth's green.
+    result = driver.find_element(By.ID, "result").text
+    for words in ("P(next pot)", "P(both)", "the black in the bottom-right corner", "the zone"):
+        if words not in result:
+            fail(f"the plan does not say {words!r}: {result!r}")
+    legend = driver.find_element(By.ID, "zone-legend").text
+    if "P(next pot) on the black" not in legend:
+        fail(f"the zone's legend says {legend!r}")
+    # The landing the plan reports is inside the zone it shades (the planner's claim).
+    landing = re.search(r"P\(next pot\) (\d+) % from where the cue ball stops, (inside|outside)", result)
+    if not landing:
+        fail(f"the landing's P(next pot) is not given: {result!r}")
+    print(f"next: {driver.find_element(By.ID, 'stroke-words').text}; landing P(next pot) "
+          f"{landing.group(1)} %, {landing.group(2)} the zone; outline {outline.count('M')} edges")
+    wait_for(driver, "the animation's end", lambda d: d.find_element(By.ID, "table")
+             .get_attribute("data-anim") == "done", timeout=30)
+    no_sideways_scroll(driver, "desk")
+    driver.save_screenshot(os.path.join(shots, "serve_next.png"))
+    # A phone: the shaded table full width, the controls below.
+    at_size(driver, 390, 844, mobile=True)
+    time.sleep(0.3)
+    no_sideways_scroll(driver, "phone")
+    if not driver.find_elements(By.CSS_SELECTOR, "#table image.field-shade"):
+        fail("the zone is gone at a phone's size")
+    driver.execute_script("window.scrollTo(0, 0)")
+    driver.save_screenshot(os.path.join(shots, "serve_next_phone.png"))
+    driver.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+
+
+# Pool balls as a layout to run out: two stripes and a solid on the pool example's table.
+STRIPES = {"9": [2.05, 0.35], "2": [0.9, 0.85], "12": [0.6, 0.35]}
+
+
+def check_run(driver, shots, url):
+    """Plan the run on pool balls (stripes among them, drawn as stripes): the pattern with
+    each cue-ball path numbered, then shot by shot, the balls where each shot finds them."""
+    example = "pots/pool_two_ball_position.yaml"
+    problem = driver.execute_script(
+        "return fetch('/api/examples').then(r => r.json()).then(j => "
+        "j.examples.find(e => e.file === arguments[0]).problem);", example)
+    problem["balls"] = STRIPES
+    for key in ("pot", "next"):
+        problem.pop(key, None)
+    link = url + "#setup=" + json.dumps({"example": example, "problem": problem}).replace(" ", "")
+    at_size(driver, 1280, 800)
+    driver.get("about:blank")
+    driver.get(link)
+    wait_for(driver, "the stripes", lambda d: len(d.find_elements(By.CSS_SELECTOR, "#table g.ball path.stripe")) == 2)
+    looks = driver.execute_script("""
+        return [...document.querySelectorAll('#table g.ball')].filter(g => g.querySelector('text.ball-number'))
+          .map(g => ({number: g.querySelector('text.ball-number').textContent,
+                      ring: g.querySelector('circle.ring').getAttribute('fill'),
+                      stripe: g.querySelector('path.stripe')?.getAttribute('fill') ?? null}));""")
+    expected = {"9": ("#ffffff", "#f4d000"), "12": ("#ffffff", "#5b2a86"), "2": ("#1f4fbf", None)}
+    got = {l["number"]: (l["ring"], l["stripe"]) for l in looks}
+    if got != expected:
+        fail(f"pool balls drawn as {got}, expected {expected} (9-15 white with a band)")
+    idle(driver)
     driver.find_element(By.ID, "run").click()
     words = wait_for(driver, "the run's words", lambda d: d.execute_script(
         "const w = document.getElementById('run-words');"
@@ -557,11 +674,46 @@ def check_run(driver, shots):
         "return [...document.querySelectorAll('#run-shots li')].map(li => li.textContent);")
     if not items or not all(" into " in t and "P(pot)" in t for t in items):
         fail(f"the run's shots are not listed ball into pocket with P(pot): {items} ({words})")
+    drawn = driver.execute_script(
+        "return [...document.querySelectorAll('#table g.shot-badge')].map(g => g.dataset.shot);")
     cue_paths = driver.find_elements(By.CSS_SELECTOR, "#table g.path.main[data-ball='cue ball']")
-    if len(cue_paths) < len([t for t in items]) - 1 or not cue_paths:
-        fail(f"{len(cue_paths)} cue-ball paths drawn for {len(items)} shots")
-    print(f"run: {words} {items}")
+    if len(drawn) < 2 or drawn != [str(i + 1) for i in range(len(drawn))] or len(cue_paths) != len(drawn):
+        fail(f"the pattern's cue-ball paths are not numbered 1, 2, ...: badges {drawn}, "
+             f"{len(cue_paths)} cue-ball paths, {len(items)} shots")
+    print(f"run: {words} {items}; badges {drawn}")
+    wait_for(driver, "the animation's end", lambda d: d.find_element(By.ID, "table")
+             .get_attribute("data-anim") == "done", timeout=30)
     driver.save_screenshot(os.path.join(shots, "serve_run.png"))
+    # Shot by shot: one cue-ball path in full, the others faint; the balls potted by the
+    # shots before are gone from the table.
+    before = None
+    for step in range(1, len(drawn) + 1):
+        driver.find_element(By.ID, "run-next" if step > 1 else "run-next").click()
+        wait_for(driver, f"shot {step}", lambda d: d.find_element(By.ID, "run-step").text
+                 == f"shot {step} of {len(drawn)}")
+        main = driver.find_elements(By.CSS_SELECTOR, "#table g.path.main[data-ball='cue ball']")
+        faint = driver.find_elements(By.CSS_SELECTOR, "#table g.path.faint[data-ball='cue ball']")
+        if len(main) != 1 or len(faint) != len(drawn) - 1:
+            fail(f"shot {step}: {len(main)} cue-ball paths in full, {len(faint)} faint")
+        balls = driver.execute_script(
+            "return [...document.querySelectorAll('#table g.ball:not(.target)')]"
+            ".map(g => g.getAttribute('aria-label').split(':')[0]);")
+        if before is not None and len(balls) >= len(before):
+            fail(f"shot {step}: the balls on the table are {balls}, before the shot before {before}")
+        before = balls
+        if step == 2:
+            wait_for(driver, "the animation's end", lambda d: d.find_element(By.ID, "table")
+                     .get_attribute("data-anim") == "done", timeout=30)
+            driver.save_screenshot(os.path.join(shots, "serve_run_step.png"))
+        print(f"run shot {step}: {balls}")
+    driver.find_element(By.ID, "run-all").click()
+    wait_for(driver, "all shots again", lambda d: d.find_element(By.ID, "run-step").text.startswith("all"))
+    at_size(driver, 390, 844, mobile=True)
+    time.sleep(0.3)
+    no_sideways_scroll(driver, "phone")
+    driver.execute_script("window.scrollTo(0, 0)")
+    driver.save_screenshot(os.path.join(shots, "serve_run_phone.png"))
+    driver.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
 
 
 def main():
@@ -595,7 +747,8 @@ def main():
             outcome = check_pot_example(driver, args.out)
             link = check_share(driver, url, outcome)
             check_layouts(driver, args.out, link)
-            check_run(driver, args.out)
+            check_next(driver, args.out)
+            check_run(driver, args.out, url)
             # (Less the 400s the test provoked: the cue ball in a pocket.)
             logs = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"
                     and not re.search(r"/api/\w+ - .* status of 400", e["message"])]

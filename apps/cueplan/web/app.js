@@ -4,6 +4,7 @@
 // every request) and draws from the resolved `scene` /api/examples gives with it.
 
 import { ApiError, call } from "./api.js";
+import { viridis } from "./colours.js";
 import { SpinDisc } from "./spin_disc.js";
 import { TableView, pocketWords } from "./table_view.js";
 import { TipDisc } from "./tip_disc.js";
@@ -31,6 +32,8 @@ const state = {
   shots: new Map(),  // simulate answers by request, for hovering back and forth
   selected: null,    // the simulate answer of the spin map cell last clicked
   exactStroke: null, // the last stroke put in the controls, unrounded
+  asideTarget: null, // the problem's target, set aside while a next ball is chosen
+  run: null,         // /api/run's answer and the shot shown ({answer, step}: 0 all shots)
 };
 
 const fixed = (v, digits) => (Number.isFinite(v) ? v.toFixed(digits) : "-");
@@ -129,7 +132,7 @@ function positions() {
   const p = state.problem, s = state.scene;
   return {
     cue_ball: p.cue_ball,
-    target: p.target,
+    target: p.target ?? null,
     tolerance: s.tolerance,
     obstacles: p.obstacles ?? [],
     balls: objectBalls(p),
@@ -154,6 +157,7 @@ function selectExample(index) {
   $("spin-intro").textContent = SPIN_INTRO;
   state.problem = structuredClone(e.problem);
   state.scene = structuredClone(e.scene);
+  state.asideTarget = null;
   state.strokeKnown = false;
   table.setScene(state.scene);
   const limits = state.scene.limits;
@@ -184,11 +188,66 @@ function fillPot() {
   ball.value = pot?.ball ?? "";
   if (pot?.pocket) pocket.value = pot.pocket;
   pocket.disabled = !pot;
+  fillNext();
   $("pot-note").textContent = !balls.length
     ? "This problem has no object balls: the plan leaves the cue ball on the target. Problems with object balls offer a pot here."
     : pot ? `Pot the ${pot.ball} in the ${pocketWords(pot.pocket)}; the cue ball must strike ` +
       `the ${state.problem.first_contact ?? pot.ball} first.`
     : "Choose a ball to pot and its pocket, or play for position only.";
+}
+
+// The first of the problem's next pots ({ball, pocket}), or null.
+function firstNext(p) {
+  const n = Array.isArray(p.next) ? p.next[0] : p.next;
+  return n && n.ball ? n : null;
+}
+
+// The next ball: another object ball and its pocket, offered once a pot is chosen. The
+// stroke is then ranked by P(pot now and pot next), and the table shades the next pot's
+// zone when the plan comes back.
+function fillNext() {
+  const p = state.problem;
+  const pot = p.pot;
+  const others = objectBalls(p).filter((b) => b.name !== pot?.ball);
+  const ball = $("next-ball"), pocket = $("next-pocket");
+  ball.replaceChildren(new Option(pot ? (others.length ? "no next ball" : "no other ball") : "choose a pot first", ""),
+    ...(pot ? others.map((b) => new Option(b.name, b.name)) : []));
+  pocket.replaceChildren(...state.scene.pockets.map((q) => new Option(pocketWords(q.name), q.name)));
+  const next = firstNext(p);
+  ball.disabled = !pot || others.length === 0;
+  ball.value = next?.ball ?? "";
+  if (next?.pocket) pocket.value = next.pocket;
+  pocket.disabled = !next;
+  const rest = Array.isArray(p.next) ? p.next.slice(1) : [];
+  $("next-note").textContent = !next
+    ? (pot && others.length ? "Choose the ball to play after this one: the plan then leaves the cue ball " +
+      "where that pot is easiest, and shades its zone on the table." : "")
+    : `Then the ${next.ball} in the ${pocketWords(next.pocket)}` +
+      (rest.length ? `, then ${rest.map((n) => `the ${n.ball} in the ${pocketWords(n.pocket)}`).join(", ")}` : "") +
+      `: the plan is ranked by P(pot now and pot next)${p.target ? " and must also reach the target" : ""}.`;
+}
+
+// The next ball chosen in the controls becomes the problem's `next` (the target, if the
+// problem has one, is set aside meanwhile: position is for the next ball).
+function chooseNext() {
+  const ball = $("next-ball").value, pocket = $("next-pocket").value;
+  const p = state.problem;
+  if (!ball) {
+    delete p.next;
+    if (state.asideTarget && !p.target) p.target = state.asideTarget;
+    state.asideTarget = null;
+  } else {
+    const old = firstNext(p);
+    const rest = Array.isArray(p.next) ? p.next.slice(1).filter((n) => n.ball !== ball) : [];
+    const first = { ball, pocket: pocket || state.scene.pockets[0]?.name };
+    p.next = old && old.ball === first.ball && old.pocket === first.pocket && rest.length ? [first, ...rest] : first;
+    if (p.target) {
+      state.asideTarget = p.target;
+      delete p.target;
+    }
+  }
+  fillNext();
+  changed();
 }
 
 // The pot chosen in the controls becomes the problem's.
@@ -198,9 +257,19 @@ function choosePot() {
   if (!ball) {
     delete p.pot;
     delete p.first_contact;
+    if (p.next) {  // a next ball needs a pot
+      delete p.next;
+      if (state.asideTarget && !p.target) p.target = state.asideTarget;
+      state.asideTarget = null;
+    }
   } else {
     p.pot = { ball, pocket: pocket || state.scene.pockets[0]?.name };
     if (p.first_contact && !(p.first_contact in (p.balls ?? {}))) delete p.first_contact;
+    if (firstNext(p)?.ball === ball) {
+      delete p.next;
+      if (state.asideTarget && !p.target) p.target = state.asideTarget;
+      state.asideTarget = null;
+    }
   }
   fillPot();
   changed();
@@ -213,10 +282,12 @@ function changed() {
   state.planShots = [];
   state.shots.clear();
   state.selected = null;
+  state.run = null;
   state.mapAbort?.abort();
   state.hoverAbort?.abort();
   table.setPositions(positions());
   table.setPaths([]);
+  table.setField(null);
   animateShot(null);
   $("share").textContent = "Copy link";
   $("result").hidden = true;
@@ -230,6 +301,13 @@ function changed() {
 
 function moveBall(kind, index, place, done) {
   const p = state.problem;
+  if (kind === "target" && !p.target) return;  // position for a next ball, or a pot alone
+  if (state.run?.step && done) {
+    // A run's step shows the balls where that shot finds them: a move starts from the
+    // problem's own places again.
+    state.run = null;
+    table.setPositions(positions());
+  }
   if (kind === "target") p.target = place;
   else if (kind === "cue_ball") p.cue_ball = place;
   else if (kind === "obstacles") p.obstacles[index] = place;
@@ -512,11 +590,15 @@ function renderPlan() {
     ["aim", `${fixed(s.aim_deg, 2)} deg`],
     ["tip offset", `${tipWords(shown.tip_offset.right, shown.tip_offset.up)} (k_T = ${fixed(s.topspin_k, 3)}, k_S = ${fixed(s.sidespin_k, 3)})`],
     ["stops", shown.final_position ? `x = ${fixed(shown.final_position[0], 3)} m, y = ${fixed(shown.final_position[1], 3)} m (${shown.outcome})` : "-"],
-    ["miss", shown.miss_distance === null ? "none: not at rest on the table"
+    ["miss", !state.problem.target ? (firstNext(state.problem)
+      ? "no target: the pot and the position for the next ball judge the stroke"
+      : "no target: the pot judges the stroke")
+      : shown.miss_distance === null ? "none: not at rest on the table"
       : `${fixed(1000 * shown.miss_distance, 1)} mm (tolerance ${fixed(1000 * r.tolerance, 0)} mm)`],
     ["success", successText(shown, r)],
     ["route", shown.route_names.length ? `${cushionWord(shown.route_names.length)}: ${shown.route_names.join(", ")}` : "no cushion"],
     ["search", `${r.evaluations} shot simulations in ${fixed(r.time_s, 3)} s (seed ${r.options.seed}, ${r.options.method} impacts)`],
+    ...nextRows(shown, r),
   ]));
 
   if (r.alternatives.length) {
@@ -563,7 +645,42 @@ function renderPlan() {
     box.appendChild(t);
   }
   box.appendChild(legendLine());
+  if (r.zone) box.appendChild(zoneLegend(r.zone));
   box.hidden = false;
+}
+
+// Position play: what the plan leaves for the next ball, and its zone.
+function nextRows(a, r) {
+  const n = a.next;
+  if (!n) return [];
+  const rows = [["next", `the ${n.ball} in the ${pocketWords(n.pocket)}: ${n.words}`]];
+  const s = a.success ?? {};
+  const interval = (e) => `${fixed(100 * e.p, 0)} % (95 % interval ${fixed(100 * e.low, 0)} to ${fixed(100 * e.high, 0)} %)`;
+  if (s.pot) rows.push(["P(pot now)", interval(s.pot)]);
+  if (s.next) rows.push(["P(next pot)", interval(s.next)]);
+  if (s.both) rows.push(["P(both)", interval(s.both)]);
+  rows.push(["landing", `P(next pot) ${fixed(100 * n.p, 0)} % from where the cue ball stops, ` +
+    `${n.in_zone ? "inside" : "outside"} the zone`]);
+  if (r.zone)
+    rows.push(["zone", `${fixed(1e4 * r.zone.area_m2, 0)} cm\u00b2 where P(next pot) is within 10 points ` +
+      `of the best (${fixed(100 * r.zone.best_p, 0)} % at the white cross)`]);
+  return rows;
+}
+
+// The zone's legend: the shade's colour bar and the outline.
+function zoneLegend(zone) {
+  const p = document.createElement("p");
+  p.id = "zone-legend";
+  p.className = "zone-legend";
+  const bar = document.createElement("span");
+  bar.className = "zone-bar";
+  bar.style.background = `linear-gradient(90deg, ${[0, 0.25, 0.5, 0.75, 1].map((t) => viridis(t)).join(", ")})`;
+  const outline = document.createElement("span");
+  outline.className = "zone-box";
+  p.append(document.createTextNode(`Shaded: P(next pot) on the ${zone.ball} into the ${pocketWords(zone.pocket)} ` +
+    "from each cue-ball position, 0 "), bar, document.createTextNode(" 100 %; "), outline,
+  document.createTextNode(" the zone, within 10 points of the best."));
+  return p;
 }
 
 async function plan() {
@@ -574,6 +691,7 @@ async function plan() {
     if (version !== state.version) return;
     state.plan = r;
     state.shown = 0;
+    table.setField(r.zone ?? null);
     setStroke(r.shot);
     // Paths, one stroke after another (the worker pool is small): the best first.
     wait("Drawing the paths...");
@@ -590,7 +708,7 @@ async function plan() {
 }
 
 // ---------------------------------------------------------------------------
-// Run out: every ball in turn, the pattern shot by shot (/api/run)
+// Plan the run: every ball in turn, the pattern shot by shot (/api/run)
 
 const RUN_SAMPLES = 20;
 
@@ -601,34 +719,112 @@ async function runOut() {
   await task(`Planning the run, then playing it ${RUN_SAMPLES} times under the noise...`, async (wait) => {
     const r = await call("/api/run", { problem: state.problem, options }, { onWait: wait });
     if (version !== state.version) return;
-    const shots = r.plan.filter((s) => s.simulation);
-    table.setPaths(shots.map((s) => ({ shot: s.simulation, style: "main" })));
-    const box = $("result");
-    box.replaceChildren();
-    const words = document.createElement("p");
-    words.className = "words";
-    words.id = "run-words";
-    const p = r.runout;
-    words.textContent = (r.plan_clears
-      ? `The run clears the table in ${r.plan.length} shot${r.plan.length === 1 ? "" : "s"}`
-      : `The run stops short after ${r.plan.length} shot${r.plan.length === 1 ? "" : "s"} (${r.plan_ended})`) +
-      `; played ${p.samples} times under the noise it clears ${fixed(100 * p.p, 0)} % ` +
-      `(95 % interval ${fixed(100 * p.low, 0)}-${fixed(100 * p.high, 0)} %).`;
-    const list = document.createElement("ol");
-    list.id = "run-shots";
-    for (const s of r.plan) {
-      const item = document.createElement("li");
-      item.textContent = `${s.ball} into ${pocketWords(s.pocket)}: ${s.shot.stroke}; ` +
-        `P(pot) ${fixed(100 * s.success.p, 0)} %` + (s.next ? `; then ${s.next}` : "");
-      list.appendChild(item);
-    }
-    const rows = [["mean potted", `${fixed(r.mean_potted, 2)} balls`]];
-    for (const d of r.deaths.slice(0, 3))
-      rows.push([`shot ${d.shot}`, `${d.reason} (${d.count} of ${p.samples} runs)`]);
-    box.append(words, list, dl(rows), legendLine());
-    box.hidden = false;
-    animateShot(shots[0]?.simulation);
+    state.run = { answer: r, step: 0 };
+    table.setField(null);
+    showRunStep();
   });
+}
+
+// The run's shots that were simulated (each from where the balls stood).
+const runShots = (r) => r.plan.filter((s) => s.simulation);
+
+// Where the balls stand before shot `step` (1-based): the cue ball where its path
+// starts, the object balls left on the table where that shot's simulation starts them.
+function positionsBefore(shot) {
+  const sim = shot.simulation;
+  const names = objectBalls(state.problem).map((b) => b.name);
+  const balls = (sim.balls ?? []).slice(1).map((b) => ({
+    name: b.name,
+    index: names.indexOf(b.name),
+    position: b.path?.length ? b.path[0].p0 : b.final_position,
+  })).filter((b) => b.index >= 0);
+  return { ...positions(), cue_ball: sim.path[0].p0, target: null, balls };
+}
+
+// The run on the table: all shots (step 0), each cue-ball path numbered, or one shot in
+// full over the faint paths of the others, the balls where that shot finds them.
+function showRunStep() {
+  const { answer: r, step } = state.run;
+  const shots = runShots(r);
+  if (step === 0) {
+    table.setPositions(positions());
+    table.setPaths(shots.map((s, i) => ({ shot: s.simulation, style: "main", number: i + 1 })));
+  } else {
+    table.setPositions(positionsBefore(shots[step - 1]));
+    const paths = shots.map((s, i) => ({ shot: s.simulation, style: i === step - 1 ? "main" : "faint", number: i + 1 }));
+    paths.push(paths.splice(step - 1, 1)[0]);  // the one shown goes on top
+    table.setPaths(paths);
+  }
+  renderRun();
+  animateShot(step === 0 ? shots[0]?.simulation : shots[step - 1].simulation);
+}
+
+function renderRun() {
+  const { answer: r, step } = state.run;
+  const shots = runShots(r);
+  const box = $("result");
+  box.replaceChildren();
+  const words = document.createElement("p");
+  words.className = "words";
+  words.id = "run-words";
+  const p = r.runout;
+  words.textContent = (r.plan_clears
+    ? `The run clears the table in ${r.plan.length} shot${r.plan.length === 1 ? "" : "s"}`
+    : `The run stops short after ${r.plan.length} shot${r.plan.length === 1 ? "" : "s"} (${r.plan_ended})`) +
+    `; played ${p.samples} times under the noise it clears ${fixed(100 * p.p, 0)} % ` +
+    `(95 % interval ${fixed(100 * p.low, 0)}-${fixed(100 * p.high, 0)} %).`;
+  // Step through: all shots, or one at a time.
+  const stepper = document.createElement("div");
+  stepper.className = "stepper";
+  stepper.setAttribute("role", "group");
+  stepper.setAttribute("aria-label", "Step through the run");
+  const button = (id, text, to, disabled) => {
+    const b = document.createElement("button");
+    b.type = "button";
+    b.id = id;
+    b.textContent = text;
+    b.disabled = disabled;
+    b.onclick = () => {
+      state.run.step = to;
+      showRunStep();
+      $(id).focus();
+    };
+    return b;
+  };
+  const where = document.createElement("span");
+  where.id = "run-step";
+  where.className = "note";
+  where.textContent = step === 0 ? `all ${shots.length} shots, numbered` : `shot ${step} of ${shots.length}`;
+  stepper.append(button("run-all", "All shots", 0, step === 0),
+    button("run-prev", "\u25c0 Previous", Math.max(step - 1, 1), step <= 1),
+    button("run-next", "Next \u25b6", Math.min(step + 1, shots.length), step >= shots.length), where);
+  const list = document.createElement("ol");
+  list.id = "run-shots";
+  r.plan.forEach((s, i) => {
+    const item = document.createElement("li");
+    if (i + 1 === step) item.className = "shown";
+    const link = document.createElement("button");
+    link.type = "button";
+    link.className = "link";
+    link.textContent = `${s.ball} into ${pocketWords(s.pocket)}`;
+    link.disabled = !s.simulation;
+    link.onclick = () => {
+      state.run.step = i + 1;
+      showRunStep();
+    };
+    item.append(link, document.createTextNode(`: ${s.shot.stroke}; P(pot) ${fixed(100 * s.success.p, 0)} %` +
+      (s.next ? `; then ${s.next.replace(/ into (\w+)$/, (m, q) => ` into the ${pocketWords(q)}`)}` : "")));
+    list.appendChild(item);
+  });
+  const rows = [["mean potted", `${fixed(r.mean_potted, 2)} balls`]];
+  for (const d of r.deaths.slice(0, 3))
+    rows.push([`shot ${d.shot}`, `${d.reason} (${d.count} of ${p.samples} runs)`]);
+  const note = document.createElement("p");
+  note.className = "note";
+  note.textContent = "Numbered badges: where the cue ball starts each shot. A shot shown alone has the " +
+    "balls where it finds them; the others' paths are faint.";
+  box.append(words, stepper, list, dl(rows), legendLine(), note);
+  box.hidden = false;
 }
 
 // ---------------------------------------------------------------------------
@@ -850,6 +1046,8 @@ function bindControls() {
   $("reset").onclick = () => selectExample(state.examples.indexOf(state.example));
   $("pot-ball").onchange = choosePot;
   $("pot-pocket").onchange = choosePot;
+  $("next-ball").onchange = chooseNext;
+  $("next-pocket").onchange = chooseNext;
   $("plan").onclick = plan;
   $("play").onclick = play;
   $("spinmap").onclick = requestMap;

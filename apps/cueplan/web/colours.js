@@ -70,3 +70,32 @@ export function cellColour(cell, scale) {
   if (cell.kind === "at_rest_allowed_cushions") return scale.colour(cell.miss_distance);
   return KIND_COLOURS[cell.kind] ?? KIND_COLOURS.no_outcome;
 }
+
+// ---------------------------------------------------------------------------
+// Balls as the pictures draw them (draw/src/table.cpp: ball_colour, named_ball; the names
+// as problems/src/ball_names.cpp reads them): snooker's colours by name, also numbered
+// ("red3", "red_12"), pool's "1" to "15" (or "ball9") with the number on a white disc,
+// 9-15 striped (a white ball with a band of 1-7's colour).
+
+export const BALL_COLOURS = {
+  "cue ball": "#fbfbf5", white: "#fbfbf5", red: "#c8102e", yellow: "#f4d000", green: "#1f7a3a",
+  brown: "#7b4a21", blue: "#1f4fbf", pink: "#f28cb5", black: "#151515",
+};
+const POOL_COLOURS = ["#f4d000", "#1f4fbf", "#c8102e", "#5b2a86", "#f07c00", "#1f7a3a", "#7b1e1e", "#151515"];
+export const OTHER_BALL = "#e8d9b0";  // a name no game gives a colour (ivory)
+
+// {colour, number (pool 1-15, else 0), striped} of a ball by its name.
+export function ballLook(name) {
+  name = String(name ?? "");
+  if (name === "cue ball" || name === "cue_ball") return { colour: BALL_COLOURS["cue ball"], number: 0, striped: false };
+  if (name in BALL_COLOURS) return { colour: BALL_COLOURS[name], number: 0, striped: false };
+  const pool = /^(?:ball)?([1-9]\d?)$/.exec(name);
+  if (pool && Number(pool[1]) <= 15) {
+    const n = Number(pool[1]);
+    return { colour: POOL_COLOURS[n > 8 ? n - 9 : n - 1], number: n, striped: n > 8 };
+  }
+  // A colour numbered to tell balls of one colour apart: "red1", "red_12", "red 3".
+  const numbered = /^([a-z]+)[_ -]?\d+$/.exec(name);
+  if (numbered && numbered[1] in BALL_COLOURS) return { colour: BALL_COLOURS[numbered[1]], number: 0, striped: false };
+  return { colour: OTHER_BALL, number: 0, striped: false };
+}

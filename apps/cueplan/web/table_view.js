@@ -7,6 +7,8 @@
 // Balls are whatever the scene lists: the cue ball, `obstacles` and, when problems
 // carry them, `balls` ({name, position}) - each drawn and moved the same way.
 
+import { BALL_COLOURS, ballLook, viridis } from "./colours.js";
+
 const SVG = "http://www.w3.org/2000/svg";
 const SNOOKER_LENGTH = 3.569;  // m, the table the snooker markings are given for
 const FONT = 0.052;            // m: text scales with the drawing
@@ -25,14 +27,39 @@ export function pocketWords(name) {
 const TARGET = "#009E73";
 const CLOTH = { snooker: "#1f7a3f", pool: "#2a6aa8", carom: "#2f5f9e" };
 const CUSHION = { snooker: "#145a2c", pool: "#1f4f7e", carom: "#234a78" };
-const BALL_COLOURS = { red: "#c8102e", yellow: "#f2c500", green: "#0a8a3a", brown: "#7b4a1e",
-  blue: "#1f4fbf", pink: "#f08cb4", black: "#111111", white: "#fbfbf5" };
+const OBSTACLE = BALL_COLOURS.red;
+// The next pot's field over the cloth (as `cueplan zone` shades it): viridis laid over the
+// cloth at this opacity, the zone outlined in white on a dark edge.
+const FIELD_OPACITY = 0.7;
 
 function el(name, attributes = {}, parent = null) {
   const e = document.createElementNS(SVG, name);
   for (const [k, v] of Object.entries(attributes)) e.setAttribute(k, v);
   if (parent) parent.appendChild(e);
   return e;
+}
+
+// A ball drawn at (cx, cy) of radius r as its look says ({colour, number, striped}, as
+// colours.js ballLook gives): its circle (class "ring", the one focus and errors outline),
+// a stripe's band, a pool ball's number on a white disc. Returns the circle.
+export function drawBall(parent, cx, cy, r, look, attributes = {}) {
+  const ring = el("circle", { class: "ring", cx, cy, r, fill: look.striped ? "#ffffff" : look.colour,
+    stroke: "#222", "stroke-width": 0.004, ...attributes }, parent);
+  if (look.striped) {
+    // The band: the ball between y = cy - h and cy + h, its sides the ball's own edge.
+    const h = 0.55 * r, w = Math.sqrt(r * r - h * h);
+    el("path", { class: "stripe", fill: look.colour, d: `M${cx - w} ${cy - h} L${cx + w} ${cy - h} ` +
+      `A${r} ${r} 0 0 1 ${cx + w} ${cy + h} L${cx - w} ${cy + h} A${r} ${r} 0 0 1 ${cx - w} ${cy - h} Z` }, parent);
+    el("circle", { cx, cy, r, fill: "none", stroke: "#222", "stroke-width": 0.004, "pointer-events": "none" }, parent);
+  }
+  if (look.number > 0) {
+    el("circle", { class: "number-disc", cx, cy, r: 0.52 * r, fill: "#ffffff" }, parent);
+    const t = el("text", { class: "ball-number", x: cx, y: -cy, transform: "scale(1,-1)", "text-anchor": "middle",
+      "dominant-baseline": "central", "font-size": (look.number >= 10 ? 0.62 : 0.78) * r, "font-weight": "bold",
+      fill: "#1a1a1a", "pointer-events": "none" }, parent);
+    t.textContent = String(look.number);
+  }
+  return ring;
 }
 
 const mm = (v) => (1000 * v).toFixed(0);
@@ -109,6 +136,10 @@ export class TableView {
     }
     this.aimLine = el("line", { stroke: "#ffffff", "stroke-width": 0.006, "stroke-dasharray": "0.03 0.02",
       opacity: 0.8, visibility: "hidden" }, w);
+    // The field stays on the cloth (its last cells reach past the cushion's nose).
+    const clip = el("clipPath", { id: "cloth-clip" }, defs);
+    el("rect", { x: 0, y: 0, width: s.length, height: s.width }, clip);
+    this.fieldLayer = el("g", { class: "field", "clip-path": "url(#cloth-clip)" }, w);
     this.targetGroup = el("g", { class: "ball target", tabindex: 0, role: "button" }, w);
     this.pathLayer = el("g", { "stroke-linecap": "round", fill: "none" }, w);
     this.markLayer = el("g", {}, w);
@@ -177,6 +208,8 @@ export class TableView {
     // The target zone: its tolerance circle and a cross.
     const t = this.targetGroup;
     t.replaceChildren();
+    t.toggleAttribute("hidden", !p.target);
+    if (p.target) {
     el("circle", { class: "ring", cx: p.target[0], cy: p.target[1], r: p.tolerance,
       fill: "rgba(0,158,115,0.35)", stroke: TARGET, "stroke-width": 0.006 }, t);
     const c = 0.5 * Math.max(p.tolerance, 0.03);
@@ -185,20 +218,23 @@ export class TableView {
     t.setAttribute("aria-label", `target: x = ${metres(p.target[0])} m, y = ${metres(p.target[1])} m, ` +
       `tolerance ${mm(p.tolerance)} mm; arrow keys move it`);
     this.balls.push({ kind: "target", index: 0, group: t });
+    }
 
     const ball = (kind, index, centre, fill, label) => {
       const g = el("g", { class: "ball", tabindex: 0, role: "button",
         "aria-label": `${label}: x = ${metres(centre[0])} m, y = ${metres(centre[1])} m; arrow keys move it` }, this.ballLayer);
-      el("circle", { class: "ring", cx: centre[0], cy: centre[1], r: s.ball_radius, fill,
-        stroke: "#222", "stroke-width": 0.004 }, g);
+      drawBall(g, centre[0], centre[1], s.ball_radius, fill);
       el("title", {}, g).textContent = `${label} (${metres(centre[0])}, ${metres(centre[1])}) m`;
       this.balls.push({ kind, index, group: g });
       return g;
     };
-    (p.obstacles ?? []).forEach((o, i) => ball("obstacles", i, o, BALL_COLOURS.red, `obstacle ball ${i + 1}`));
+    const plain = (colour) => ({ colour, number: 0, striped: false });
+    (p.obstacles ?? []).forEach((o, i) => ball("obstacles", i, o, plain(OBSTACLE), `obstacle ball ${i + 1}`));
+    // An entry may say which of the problem's balls it is (`index`): a run's step shows
+    // the balls left on the table.
     (p.balls ?? []).forEach((b, i) =>
-      ball("balls", i, b.position, BALL_COLOURS[b.colour ?? b.name] ?? "#d9a400", `${b.name ?? "object"} ball`));
-    ball("cue_ball", 0, p.cue_ball, BALL_COLOURS.white, "cue ball");
+      ball("balls", b.index ?? i, b.position, ballLook(b.name), `${b.name ?? "object"} ball`));
+    ball("cue_ball", 0, p.cue_ball, ballLook("cue ball"), "cue ball");
     this.setAim(this.aimDeg);
   }
 
@@ -224,19 +260,81 @@ export class TableView {
     }
   }
 
-  // Paths: [{shot: simulate's JSON, style: "main" | "faint" | "hover"}], drawn in order.
+  // Paths: [{shot: simulate's JSON, style: "main" | "faint" | "hover", number?}], drawn
+  // in order; a number (a run's shot) is written in a dark badge where the cue ball starts.
   setPaths(paths) {
     this.stopAnimation();
     this.pathLayer.replaceChildren();
     this.markLayer.replaceChildren();
     for (const { shot, style } of paths) this.drawPath(shot, style);
+    for (const { shot, style, number } of paths)
+      if (number && shot.path?.length) this.drawBadge(shot.path[0].p0, number, style);
+  }
+
+  // A shot's number beside where its cue ball starts (off the ball, towards the table's
+  // middle, so that the ball stays in sight).
+  drawBadge([x, y], number, style) {
+    const s = this.scene, r = 0.032;
+    const dx = s.length / 2 - x, dy = s.width / 2 - y, n = Math.hypot(dx, dy) || 1;
+    const off = s.ball_radius + r + 0.006;
+    const cx = x + (off * dx) / n, cy = y + (off * dy) / n;
+    const g = el("g", { class: `shot-badge ${style}`, "data-shot": number, opacity: style === "faint" ? 0.6 : 1 },
+      this.markLayer);
+    el("circle", { cx, cy, r, fill: style === "faint" ? "#555" : "#1a1a1a", stroke: "#ffffff", "stroke-width": 0.004 }, g);
+    const t = el("text", { x: cx, y: -cy, transform: "scale(1,-1)", "text-anchor": "middle",
+      "dominant-baseline": "central", "font-size": 0.04, "font-weight": "bold", fill: "#ffffff" }, g);
+    t.textContent = String(number);
+    el("title", {}, g).textContent = `shot ${number}: the cue ball starts at (${metres(x)}, ${metres(y)}) m`;
+  }
+
+  // The next pot's field (/api/solve's `zone`): each cell shaded by its value (viridis
+  // over the cloth), the zone (values at least zone.threshold) outlined; null clears it.
+  setField(zone) {
+    this.fieldLayer.replaceChildren();
+    this.zone = zone ?? null;
+    if (!zone) return;
+    const { columns, rows, cell, values } = zone;
+    // The shade as an image of one pixel a cell, smoothed when scaled.
+    const canvas = document.createElement("canvas");
+    canvas.width = columns;
+    canvas.height = rows;
+    const g2 = canvas.getContext("2d");
+    const image = g2.createImageData(columns, rows);
+    for (let j = 0; j < rows; ++j)
+      for (let i = 0; i < columns; ++i) {
+        const v = values[j * columns + i];
+        const hex = viridis(v);
+        const k = 4 * ((rows - 1 - j) * columns + i);  // the image's rows run from the top
+        image.data[k] = parseInt(hex.slice(1, 3), 16);
+        image.data[k + 1] = parseInt(hex.slice(3, 5), 16);
+        image.data[k + 2] = parseInt(hex.slice(5, 7), 16);
+        image.data[k + 3] = v > 0 ? Math.round(255 * FIELD_OPACITY) : 0;
+      }
+    g2.putImageData(image, 0, 0);
+    // The world is flipped (y up): the image is drawn flipped back about its own middle.
+    const w = columns * cell, h = rows * cell;
+    el("image", { class: "field-shade", href: canvas.toDataURL(), x: 0, y: -h, width: w, height: h,
+      transform: "scale(1,-1)", preserveAspectRatio: "none" }, this.fieldLayer);
+    // The zone's outline: the cell edges between cells in it and cells out of it.
+    const inside = (i, j) => i >= 0 && j >= 0 && i < columns && j < rows && values[j * columns + i] >= zone.threshold;
+    let d = "";
+    for (let j = 0; j <= rows; ++j)
+      for (let i = 0; i <= columns; ++i) {
+        if (i < columns && inside(i, j) !== inside(i, j - 1)) d += `M${i * cell} ${j * cell}h${cell}`;
+        if (j < rows && inside(i, j) !== inside(i - 1, j)) d += `M${i * cell} ${j * cell}v${cell}`;
+      }
+    el("path", { d, stroke: "rgba(0,0,0,0.6)", "stroke-width": 0.009, fill: "none", "stroke-linecap": "square" },
+      this.fieldLayer);
+    el("path", { class: "zone-outline", d, stroke: "#ffffff", "stroke-width": 0.004, fill: "none",
+      "stroke-linecap": "square" }, this.fieldLayer);
+    const [bx, by] = zone.best;
+    el("path", { class: "zone-best", d: `M${bx - 0.02} ${by} H${bx + 0.02} M${bx} ${by - 0.02} V${by + 0.02}`,
+      stroke: "#ffffff", "stroke-width": 0.005 }, this.fieldLayer);
   }
 
   // A ball's colour on the table and on its path.
   colourOf(name) {
-    if (!name || name === "cue ball" || name === "cue_ball") return BALL_COLOURS.white;
-    const b = (this.positions?.balls ?? []).find((x) => x.name === name);
-    return BALL_COLOURS[b?.colour ?? name] ?? "#d9a400";
+    return ballLook(name || "cue ball").colour;
   }
 
   // A shot's paths: the cue ball's, then each object ball's that moved (`balls` of the
@@ -308,12 +406,24 @@ export class TableView {
   // own, which keep their places; the last frame leaves each where it stops.
   animate(shot, rate, onTick) {
     this.stopAnimation();
-    const moving = [{ name: "cue ball", path: shot.path, colour: BALL_COLOURS.white }];
+    const moving = [{ name: "cue ball", path: shot.path }];
     for (const b of (shot.balls ?? []).slice(1))
-      if (b.path?.length) moving.push({ name: b.name, path: b.path, colour: this.colourOf(b.name) });
+      if (b.path?.length) moving.push({ name: b.name, path: b.path });
     const duration = Math.max(...moving.map((m) => m.path.at(-1)?.t1 ?? 0));
-    const circles = moving.map((m) => el("circle", { r: this.scene.ball_radius, fill: m.colour,
-      stroke: "#000", "stroke-width": 0.004, "data-ball": m.name }, this.animLayer));
+    // Each moving ball: its circle (which carries its place in cx, cy) and, for a pool
+    // ball, its band and number drawn at the origin and moved with it.
+    const circles = moving.map((m) => {
+      const look = ballLook(m.name);
+      const circle = el("circle", { r: this.scene.ball_radius, fill: look.striped ? "#ffffff" : look.colour,
+        stroke: "#000", "stroke-width": 0.004, "data-ball": m.name }, this.animLayer);
+      if (look.number > 0) {
+        const g = el("g", { "pointer-events": "none" }, this.animLayer);
+        drawBall(g, 0, 0, this.scene.ball_radius, look, { class: "" });
+        g.firstChild.remove();  // the circle above is the ball's
+        circle.decor = g;
+      }
+      return circle;
+    });
     const place = (t) => moving.forEach((m, i) => {
       const path = m.path;
       let p = path[0].p0;
@@ -321,6 +431,7 @@ export class TableView {
       else for (const seg of path) if (t >= seg.t0 && t <= seg.t1) { p = at(seg, t - seg.t0); break; }
       circles[i].setAttribute("cx", p[0]);
       circles[i].setAttribute("cy", p[1]);
+      circles[i].decor?.setAttribute("transform", `translate(${p[0]} ${p[1]})`);
     });
     const started = performance.now();
     this.svg.dataset.anim = "running";
@@ -416,7 +527,7 @@ export class TableView {
     const p = this.positions;
     if (b.kind === "target") return p.target;
     if (b.kind === "cue_ball") return p.cue_ball;
-    if (b.kind === "balls") return p.balls[b.index].position;
+    if (b.kind === "balls") return (p.balls.find((x) => x.index === b.index) ?? p.balls[b.index]).position;
     return p[b.kind][b.index];
   }
 

@@ -44,9 +44,13 @@ struct DrawnPath {
 // offset beside it so that both stay readable.
 struct DrawnBall {
   std::string name;              // e.g. "cue ball", "red", "yellow"; empty: no label
-  Colour colour;                 // its fill
+  Colour colour;                 // its fill (a stripe's band)
   physics::Vec2 start;           // m, table frame
   std::vector<DrawnPath> paths;  // in order; each starts where the one before it ended
+  // Pool's numbered balls: > 0 writes the number on a white disc at the ball's middle;
+  // striped: a white ball with a band of `colour` across it (9-15).
+  int number = 0;
+  bool striped = false;
 };
 
 // The colours of named balls: "cue ball" and "white", the snooker colours (red, yellow,
@@ -55,6 +59,10 @@ struct DrawnBall {
 std::optional<Colour> ball_colour(std::string_view name);
 // The fill of a ball whose name has no colour (ivory).
 Colour other_ball_colour();
+// A ball standing at `start` as its name says it looks (no paths yet): its colour
+// (ball_colour, else other_ball_colour()), and for pool's "1" to "15" (also "ball9") its
+// number, 9-15 striped (problems::identify_ball).
+DrawnBall named_ball(const std::string& name, physics::Vec2 start);
 
 // A small marker on the cloth, e.g. where one spin of a spin map comes to rest.
 struct TableDot {
