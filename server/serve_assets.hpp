@@ -1,6 +1,6 @@
 // Files `cueplan serve` carries inside the binary (cmake/embed_files.cmake writes them
 // into generated sources at build time): the page's HTML, JavaScript and CSS from
-// apps/cueplan/web/, and the shipped problems from problems/*.yaml. The server reads
+// server/web/, and the shipped problems from problems/*.yaml. The server reads
 // nothing from disk to answer a request.
 #pragma once
 
@@ -14,7 +14,7 @@ struct EmbeddedFile {
   std::string_view bytes;  // the file's contents
 };
 
-// apps/cueplan/web/*, in name order.
+// server/web/*, in name order.
 std::span<const EmbeddedFile> web_assets();
 // problems/*.yaml (the one-stroke examples; not problems/routes/), in name order.
 std::span<const EmbeddedFile> shipped_problem_files();
