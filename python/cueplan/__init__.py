@@ -193,10 +193,8 @@ def solve_many(problems: Sequence[ProblemLike], *, threads: int = 0, seed: int =
     options = _options(seed, max_evaluations, max_time, starts, samples, noise, robust, alternatives,
                        global_method, local_method, enforce_rigid_limit, 1)
     tables, methods = zip(*[_table(p, method, table_cache) for p in ps]) if ps else ((), ())
-    # A han_2005 problem among table ones: its impacts are closed forms whatever the method.
-    chosen = "table" if "table" in methods else method
-    results = _core.plan_many([p._core for p in ps], options, chosen, accuracy, int(max_events), list(tables),
-                              int(threads))
+    results = _core.plan_many([p._core for p in ps], options, list(methods), accuracy, int(max_events),
+                              list(tables), int(threads))
     return [record_of(r) for r in results]
 
 

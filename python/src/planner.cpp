@@ -187,16 +187,18 @@ py::dict plan_one(const prob::Problem& problem, const Options& options, const st
 
 // Every problem planned, `threads` at a time (each plan on one thread); the results in
 // the problems' order, the same for any thread count. A problem the planner refuses
-// comes back with status invalid_input and its message, not as an exception.
+// comes back with status invalid_input and its message, not as an exception. methods
+// and tables: each problem's (a han_2005 cushion needs no table).
 py::list plan_many(const std::vector<std::shared_ptr<prob::Problem>>& problems, const Options& options,
-                   const std::string& method, std::optional<double> accuracy, int max_events,
+                   const std::vector<std::string>& methods, std::optional<double> accuracy, int max_events,
                    const std::vector<const TableHandle*>& tables, int threads) {
-  if (tables.size() != problems.size()) throw std::invalid_argument("one table (or None) a problem");
+  if (tables.size() != problems.size() || methods.size() != problems.size())
+    throw std::invalid_argument("one method and one table (or None) a problem");
   if (threads < 0)
     throw InputError(phys::invalid({}, "must be 0 (one per core) or more", threads).message("threads"), "threads");
   std::vector<plan::PlannerOptions> each;
   for (size_t i = 0; i < problems.size(); ++i) {
-    each.push_back(with_simulation(options, method, accuracy, max_events, tables[i]));
+    each.push_back(with_simulation(options, methods[i], accuracy, max_events, tables[i]));
     each.back().threads = 1;
   }
   std::vector<plan::PlanResult> results(problems.size());
@@ -276,7 +278,7 @@ void bind_planner(py::module_& m) {
         py::arg("global_method"), py::arg("local_method"), py::arg("enforce_rigid_limit"), py::arg("threads"));
   m.def("plan", &plan_one, py::arg("problem"), py::arg("options"), py::arg("method"),
         py::arg("accuracy").none(true), py::arg("max_events"), py::arg("table").none(true));
-  m.def("plan_many", &plan_many, py::arg("problems"), py::arg("options"), py::arg("method"),
+  m.def("plan_many", &plan_many, py::arg("problems"), py::arg("options"), py::arg("methods"),
         py::arg("accuracy").none(true), py::arg("max_events"), py::arg("tables"), py::arg("threads"));
   m.def("spin_map", &spin_map, py::arg("problem"), py::arg("speed"), py::arg("aim_deg"), py::arg("grid"),
         py::arg("spin_max"), py::arg("threads"), py::arg("method"), py::arg("accuracy").none(true),

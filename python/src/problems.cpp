@@ -32,7 +32,12 @@ ProblemPtr load_file(const std::string& path) {
 }
 
 ProblemPtr parse_text(const std::string& text, const std::string& source) {
-  return loaded(prob::parse_problem(text, source));
+  prob::LoadResult r;
+  {
+    py::gil_scoped_release release;
+    r = prob::parse_problem(text, source);
+  }
+  return loaded(std::move(r));
 }
 
 // A problem's broken rule in its file's words: field "table.length", "cue_ball", ...

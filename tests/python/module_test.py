@@ -273,6 +273,14 @@ class Solve(unittest.TestCase):
         frame = pandas.DataFrame(records)
         self.assertEqual(list(frame["name"]), [r["name"] for r in records])
 
+    def test_solve_many_with_the_table_and_a_closed_form_cushion(self):
+        """The default method (the impact table) for a Mathavan cushion, none needed for
+        Han's closed form: each problem gets its own."""
+        han = {"cue_ball": [0.9, 1.2], "target": [2.2, 1.1], "limits": {"cushions": 1},
+               "physics": {"cushion_model": "han_2005"}}
+        records = cueplan.solve_many([ONE_RAIL, han], threads=2, max_evaluations=300, samples=0, max_time=120)
+        self.assertEqual([r["status"] for r in records], ["solved", "solved"], records)
+
     def test_spin_map_cells(self):
         m = cueplan.spin_map(ONE_RAIL, 1.002, -60.36, grid=11, method="exact")
         n = len(m.cells["topspin_k"])
