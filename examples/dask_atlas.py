@@ -3,7 +3,7 @@
 table and one or more targets, solve the problem and record whether it was solved,
 its success under a player's noise and the stroke - and draw the atlas.
 
-Dask schedules, cueplan computes: each task is one `cueplan.solve` (the Python module,
+Dask schedules, cueplan computes: each task is one `cueplan.solve` (the Python package,
 python/), whose answer depends only on its problem and options (the evaluation budget,
 not the clock, ends each search), so the atlas is the same on one machine or many.
 
@@ -12,7 +12,8 @@ not the clock, ends each search), so the atlas is the same on one machine or man
   python3 examples/dask_atlas.py --serial --json atlas.json   # no Dask: the reference
 
 Without --scheduler a LocalCluster of --workers processes (one thread each) runs on
-this machine. Remote workers need the cueplan module on their PYTHONPATH.
+this machine. Remote workers need the cueplan package installed (`pip install .`) or on
+their PYTHONPATH; a cueplan.Problem travels to them as its file's text.
 
 Results stream: at most --window tasks are in flight, and each record is written to
 --json and folded into the picture's grid as it comes, in the order of the cells, so
@@ -42,12 +43,10 @@ def import_cueplan():
     return cueplan
 
 
-def cells_of(fields, grid):
+def cells_of(problem, grid):
     """Cell centres (m) of an nx-by-ny grid over the playing area inside the cushions,
     kept a ball radius and a little more from them."""
-    table = fields.get("table", {})
-    length = table.get("length", 3.569)
-    width = table.get("width", 1.778)
+    length, width = problem.table.length, problem.table.width
     margin = 0.06
     nx, ny = grid
     xs = [margin + (length - 2 * margin) * (i + 0.5) / nx for i in range(nx)]
@@ -55,30 +54,34 @@ def cells_of(fields, grid):
     return [(i, j, x, y) for j, y in enumerate(ys) for i, x in enumerate(xs)]
 
 
-def solve_cell(fields, target, cell, options):
+def solve_cell(problem, target, cell, options):
     """One task: the problem with the cue ball at the cell's centre, solved. Returns a
     plain dict (what the atlas records), the same wherever it runs."""
     import cueplan  # on a worker: imported there
     i, j, x, y = cell
-    problem = dict(fields, cue_ball=[x, y], target=list(target))
     record = {"cell": [i, j], "cue_ball": [x, y], "target": list(target)}
     try:
-        r = cueplan.solve(problem, **options)
+        moved = problem.with_positions(cue_ball=(x, y), target=target)
+        plan = cueplan.solve(moved, **options)
     except cueplan.InputError as bad:  # a cue ball in a pocket's mouth, on an obstacle, ...
-        return dict(record, status="invalid_input", error=str(bad))
-    return dict(record, status=r["status"], success=r["success"]["both"]["p"],
-                miss_distance=r["miss_distance"], shot=r["shot"], stroke=r["stroke"])
+        return dict(record, status="invalid_input", error=str(bad), field=bad.field)
+    s = plan.stroke
+    return dict(record, status=plan.status, success=plan.success["both"]["p"],
+                miss_distance=plan.miss_distance,
+                shot={"speed": s.speed, "aim_deg": s.aim_deg, "topspin_k": s.topspin_k,
+                      "sidespin_k": s.sidespin_k, "elevation_deg": s.elevation_deg},
+                stroke=plan.best["stroke_words"])
 
 
-def atlas(fields, targets, grid, options, client=None, window=None):
+def atlas(problem, targets, grid, options, client=None, window=None):
     """Every (target, cell) solved - by the Dask client's workers, or here in turn -
     yielded one record at a time in the order of the cells, as they come: at most
     `window` tasks are in flight (four a worker by default), so neither this process
     nor the cluster holds the atlas, whatever its size."""
-    jobs = ((t, c) for t in targets for c in cells_of(fields, grid))
+    jobs = ((t, c) for t in targets for c in cells_of(problem, grid))
     if client is None:
         for t, c in jobs:
-            yield solve_cell(fields, t, c, options)
+            yield solve_cell(problem, t, c, options)
         return
     from collections import deque
     if window is None:
@@ -86,7 +89,7 @@ def atlas(fields, targets, grid, options, client=None, window=None):
     # Scatter the problem once; one task a cell. The oldest task's record is handed on
     # as soon as it is done, and another task takes its place, so the workers stay busy
     # while this process waits in order.
-    shared = client.scatter(fields, broadcast=True)
+    shared = client.scatter(problem, broadcast=True)
     in_flight = deque()
     for t, c in jobs:
         in_flight.append(client.submit(solve_cell, shared, t, c, options, pure=False))
@@ -148,16 +151,14 @@ class JsonAtlasWriter:
         self.file.close()
 
 
-def draw(fields, targets, grid, summary, out):
+def draw(problem, targets, grid, summary, out):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib import colors
     import numpy as np
 
-    table = fields.get("table", {})
-    length = table.get("length", 3.569)
-    width = table.get("width", 1.778)
+    length, width = problem.table.length, problem.table.width
     nx, ny = grid
     fig, axes = plt.subplots(len(targets), 1, figsize=(9, 4.6 * len(targets)), squeeze=False)
     cmap = plt.get_cmap("viridis").copy()
@@ -224,14 +225,14 @@ def parse_args(argv):
 def main(argv=None):
     args = parse_args(argv)
     cueplan = import_cueplan()
-    fields = cueplan.read_problem(args.problem)
-    targets = args.target or [fields["target"]]
+    problem = cueplan.Problem(args.problem)
+    targets = args.target or [list(problem.target)]
     # The evaluation budget, never the clock, ends each search: the atlas is reproducible.
     options = dict(method=args.method, max_evaluations=args.max_evaluations, samples=args.samples,
                    seed=args.seed, max_time=3600, alternatives=0)
     # One solve here first: a first use of the table method builds and caches the impact
     # table once, so local workers load it instead of each building it.
-    solve_cell(fields, targets[0], cells_of(fields, args.grid)[0], options)
+    solve_cell(problem, targets[0], cells_of(problem, args.grid)[0], options)
 
     summary = AtlasSummary(targets, args.grid)
     writer = JsonAtlasWriter(args.json, args.grid, targets, options) if args.json else None
@@ -244,7 +245,7 @@ def main(argv=None):
 
     if args.serial:
         started = time.perf_counter()
-        consume(atlas(fields, targets, args.grid, options))
+        consume(atlas(problem, targets, args.grid, options))
         seconds = time.perf_counter() - started
         where = "serial"
     else:
@@ -260,9 +261,9 @@ def main(argv=None):
             workers = len(client.scheduler_info()["workers"])
             # Every worker imports the module and loads its impact table before the clock
             # starts: the time is the atlas's, not the cluster's start.
-            client.run(solve_cell, fields, targets[0], cells_of(fields, args.grid)[0], options)
+            client.run(solve_cell, problem, targets[0], cells_of(problem, args.grid)[0], options)
             started = time.perf_counter()
-            consume(atlas(fields, targets, args.grid, options, client, window=args.window))
+            consume(atlas(problem, targets, args.grid, options, client, window=args.window))
             seconds = time.perf_counter() - started
             where = f"{workers} Dask workers ({args.scheduler or 'LocalCluster'})"
         if cluster is not None:
@@ -273,7 +274,7 @@ def main(argv=None):
     print(f"atlas: {cells} problems ({args.grid[0]} x {args.grid[1]} cells x {len(targets)} targets) "
           f"solved on {where} in {seconds:.2f} s ({cells / seconds:.2f} problems/s); {summary.solved} solved")
     if args.out:
-        draw(fields, targets, args.grid, summary, args.out)
+        draw(problem, targets, args.grid, summary, args.out)
         print(f"atlas: drawn to {args.out}")
     return 0
 

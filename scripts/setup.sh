@@ -16,7 +16,8 @@ packages=(
   libcpp-httplib-dev
   chromium chromium-driver python3-selenium
   pybind11-dev python3-dev python3-pybind11 python3-numpy
-  python3-dask python3-distributed python3-matplotlib
+  python3-setuptools python3-wheel python3-pip python3-venv
+  python3-dask python3-distributed python3-matplotlib python3-pandas
 )
 
 missing=()
