@@ -106,8 +106,8 @@ ServeCommand::ServeCommand(CLI::App& parent) {
   c.footer(
       "API (JSON in, JSON out; the answers are the commands' --json objects): POST /api/solve "
       "{problem, options}, POST /api/simulate {problem, stroke, options}, POST /api/spinmap "
-      "{problem, speed, aim_deg, grid, options}, GET /api/examples, GET /api/health. README.md, "
-      "'cueplan serve', shows each.\n"
+      "{problem, speed, aim_deg, grid, options}, POST /api/run {problem, game, options}, GET "
+      "/api/examples, GET /api/health. docs/commands/serve.md shows each.\n"
       "Exit codes: 0 stopped by Ctrl-C or SIGTERM, 1 could not listen, 2 bad flags.\n"
       "Example: cueplan serve --port 8080, then open http://127.0.0.1:8080/");
 }
