@@ -43,7 +43,7 @@
 #include "serve_api.hpp"
 #include "serve_problems.hpp"
 #include "serve_tables.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace py = pybind11;
 

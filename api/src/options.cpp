@@ -1,8 +1,6 @@
-#include "planner_flags.hpp"
-#include "field_names.hpp"
-#include "shot_words.hpp"
-
-#include <CLI/CLI.hpp>
+#include "cueplan/api/options.hpp"
+#include "cueplan/api/field_names.hpp"
+#include "cueplan/api/words.hpp"
 
 #include "cueplan/physics/parallel.hpp"
 #include <algorithm>
@@ -10,7 +8,7 @@
 #include <cstdio>
 #include <utility>
 
-namespace cueplan::cli {
+namespace cueplan::api {
 namespace {
 
 namespace plan = cueplan::planner;
@@ -30,137 +28,89 @@ const std::initializer_list<FieldName> kPlannerFlags = {
     {{"simulation", "impact_accuracy"}, "--accuracy"},
     {{"global"}, "--global"},
     {{"local"}, "--local"},
+    {{"robust"}, "--robust"},
+    {{"simulation", "impact_method"}, "--method"},
 };
 
 }  // namespace
 
-void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
-  c.add_option("--global", args->global,
-               "Global search (NLopt): direct_l (DIRECT-L), crs2 (controlled random search), "
-               "mlsl (multi-level single linkage) or isres (evolution strategy); or (OMPL) "
-               "ompl_kpiece1 (a KPIECE1 tree of strokes spread by where they land)")
-      ->type_name("direct_l|crs2|mlsl|isres|ompl_kpiece1")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--local", args->local,
-               "Local polish (NLopt, derivative-free): bobyqa, sbplx (Subplex), cobyla or "
-               "neldermead")
-      ->type_name("bobyqa|sbplx|cobyla|neldermead")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--max-evaluations", args->max_evaluations,
-               "Budget: shot simulations for the search, global and local together, >= 10")
-      ->type_name("N")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--max-time", args->max_time_s,
-               "Budget: wall-clock time for the whole command (s), > 0: loading the impact "
-               "table (not a first build), the search (up to 75 % of it), the exact "
-               "verification and the Monte Carlo (an estimate the clock cuts short counts the "
-               "strokes it played). A plan the clock ends is no longer reproducible from its "
-               "seed")
-      ->type_name("S")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--starts", args->starts, "Distinct global candidates polished locally, >= 1")
-      ->type_name("N")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--seed", args->seed,
-               "Seed of every random choice: the same seed and options give the same answer")
-      ->type_name("N")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--noise", args->noise,
-               "Scale of the player's execution noise (Gaussian: aim 0.125 deg, speed "
-               "0.075 m/s, tip offset 0.5 mm each way plus --tip-offset-relative of the "
-               "offset, squirt misjudged by --squirt-judgement of it; all times this), >= 0; "
-               "0 is a perfect cue")
-      ->type_name("X")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--tip-offset-relative", args->tip_offset_relative,
-               "Execution noise: the tip offset's deviation each way grows by this fraction of "
-               "the offset intended that way (docs/squirt.md), >= 0")
-      ->type_name("F")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--squirt-judgement", args->squirt_judgement,
-               "Execution noise: the player's allowance for squirt errs by this fraction of "
-               "the squirt (an aim deviation; docs/squirt.md), >= 0")
-      ->type_name("F")
-      ->capture_default_str()
-      ->group(group);
-  c.add_option("--bridge-length", args->bridge_length,
-               "Execution noise: a sideways tip error turns the cue about the bridge this far "
-               "behind the tip (m; docs/squirt.md), >= 0; 0 shifts the cue without turning it")
-      ->type_name("M")
-      ->capture_default_str()
-      ->group(group);
-  c.add_flag("--robust", args->robust,
-             "Maximise the success probability under the noise rather than the nominal miss")
-      ->group(group);
-  c.add_option("--samples", args->samples,
-               "Noisy strokes simulated per success probability (Monte Carlo), >= 0; 0 skips it "
-               "(>= 1 with --robust)")
-      ->type_name("N")
-      ->capture_default_str()
-      ->group(group);
-  c.add_flag("--enforce-rigid-limit", args->enforce_rigid_limit,
-             "Reject strokes that meet a cushion faster than " +
-                 number(physics::CushionParams{}.rigid_speed_limit, "m/s") +
-                 " along its normal, where the rigid-cushion model is not trusted (otherwise "
-                 "such strokes are only flagged)")
-      ->group(group);
-  c.add_option("--alternatives", args->alternatives,
-               "Distinct solutions (other cushion routes, draw or follow, left or right) reported "
-               "besides the best, >= 0")
-      ->type_name("N")
-      ->capture_default_str()
-      ->group(group);
+namespace {
+
+// planner_options on *options (its other fields kept).
+void fill_planner_options(const PlannerArgs& args, int threads,
+                          const physics::SimulationOptions& simulation,
+                          std::span<const FieldName> names, plan::PlannerOptions* out) {
+  plan::PlannerOptions& options = *out;
+  const auto name = [&](physics::FieldPath field) { return name_of(field, names); };
+  const auto fail = [&](physics::FieldPath field, const std::string& rule) {
+    const std::string n = name(field);
+    return InputError(n, n + rule);
+  };
+  if (!plan::parse_global_method(args.global, &options.global))
+    throw fail({"global"}, " must be one of direct_l, crs2, mlsl, isres, ompl_kpiece1, got '" +
+                               args.global + "'");
+  if (!plan::parse_local_method(args.local, &options.local))
+    throw fail({"local"}, " must be one of bobyqa, sbplx, cobyla, neldermead, got '" + args.local +
+                              "'");
+  if (args.max_evaluations < 1)
+    throw fail({"max_evaluations"}, " must be a positive number of shot simulations, got " +
+                                        std::to_string(args.max_evaluations));
+  if (!std::isfinite(args.max_time_s) || !(args.max_time_s > 0.0))
+    throw fail({"max_time_s"}, " must be positive and finite (s), got " + number(args.max_time_s));
+  if (args.starts < 1)
+    throw fail({"local_starts"}, " must be at least 1, got " + std::to_string(args.starts));
+  // Ten times a club player's scatter already sends strokes past what a cue can give.
+  if (!std::isfinite(args.noise) || args.noise < 0.0 || args.noise > 10.0)
+    throw fail({"noise", "scale"},
+               " must be 0 to 10 (times a club player's scatter), got " + number(args.noise));
+  if (args.samples < 0)
+    throw fail({"robustness_samples"}, " must not be negative, got " + std::to_string(args.samples));
+  if (args.robust && args.samples < 1)
+    throw fail({"robustness_samples"}, " must be at least 1 with " + name({"robust"}) + ", got " +
+                                           std::to_string(args.samples));
+  if (args.alternatives < 0)
+    throw fail({"max_alternatives"},
+               " must not be negative, got " + std::to_string(args.alternatives));
+  if (threads < 0)
+    throw fail({"threads"}, " must be 0 (one per core) or more, got " + std::to_string(threads));
+
+  options.max_evaluations = args.max_evaluations;
+  options.max_time_s = args.max_time_s;
+  options.local_starts = args.starts;
+  options.seed = args.seed;
+  options.threads = static_cast<int>(physics::thread_count(threads));
+  options.noise.scale = args.noise;
+  options.noise.tip_offset_relative = args.tip_offset_relative;
+  options.noise.squirt_judgement = args.squirt_judgement;
+  options.noise.bridge_length = args.bridge_length;
+  options.robust = args.robust;
+  options.robustness_samples = args.samples;
+  options.enforce_rigid_limit = args.enforce_rigid_limit;
+  options.max_alternatives = args.alternatives;
+  options.simulation = simulation;
+  if (const physics::Validation e = options.validate())
+    throw InputError(name_of(e->field, names), message_in(*e, names));
+}
+
+}  // namespace
+
+plan::PlannerOptions planner_options(const PlannerArgs& args, int threads,
+                                     const physics::SimulationOptions& simulation,
+                                     std::span<const FieldName> names) {
+  plan::PlannerOptions options;
+  fill_planner_options(args, threads, simulation, names, &options);
+  return options;
 }
 
 std::string read_planner_options(const PlannerArgs& args, int threads,
                                  const physics::SimulationOptions& simulation,
                                  plan::PlannerOptions* options) {
-  if (!plan::parse_global_method(args.global, &options->global))
-    return "--global must be one of direct_l, crs2, mlsl, isres, ompl_kpiece1, got '" + args.global + "'";
-  if (!plan::parse_local_method(args.local, &options->local))
-    return "--local must be one of bobyqa, sbplx, cobyla, neldermead, got '" + args.local + "'";
-  if (args.max_evaluations < 1)
-    return "--max-evaluations must be a positive number of shot simulations, got " +
-           std::to_string(args.max_evaluations);
-  if (!std::isfinite(args.max_time_s) || !(args.max_time_s > 0.0))
-    return "--max-time must be positive and finite (s), got " + number(args.max_time_s);
-  if (args.starts < 1) return "--starts must be at least 1, got " + std::to_string(args.starts);
-  // Ten times a club player's scatter already sends strokes past what a cue can give.
-  if (!std::isfinite(args.noise) || args.noise < 0.0 || args.noise > 10.0)
-    return "--noise must be 0 to 10 (times a club player's scatter), got " + number(args.noise);
-  if (args.samples < 0)
-    return "--samples must not be negative, got " + std::to_string(args.samples);
-  if (args.robust && args.samples < 1)
-    return "--samples must be at least 1 with --robust, got " + std::to_string(args.samples);
-  if (args.alternatives < 0)
-    return "--alternatives must not be negative, got " + std::to_string(args.alternatives);
-  if (threads < 0)
-    return "--threads must be 0 (one per core) or more, got " + std::to_string(threads);
-
-  options->max_evaluations = args.max_evaluations;
-  options->max_time_s = args.max_time_s;
-  options->local_starts = args.starts;
-  options->seed = args.seed;
-  options->threads = static_cast<int>(physics::thread_count(threads));
-  options->noise.scale = args.noise;
-  options->noise.tip_offset_relative = args.tip_offset_relative;
-  options->noise.squirt_judgement = args.squirt_judgement;
-  options->noise.bridge_length = args.bridge_length;
-  options->robust = args.robust;
-  options->robustness_samples = args.samples;
-  options->enforce_rigid_limit = args.enforce_rigid_limit;
-  options->max_alternatives = args.alternatives;
-  options->simulation = simulation;
-  const physics::Validation e = options->validate();
-  return e ? message_in(*e, kPlannerFlags) : std::string();
+  try {
+    fill_planner_options(args, threads, simulation, kPlannerFlags, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
 }
 
 std::span<const FieldName> planner_flag_names() { return kPlannerFlags; }
@@ -176,4 +126,4 @@ std::string noise_text(const plan::NoiseModel& noise) {
          number(noise.scale) + ")";
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api
