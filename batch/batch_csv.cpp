@@ -22,7 +22,7 @@
 
 #include "cueplan/parallel.hpp"
 #include "csv.hpp"
-#include "exit_codes.hpp"
+#include "cueplan/api/exit_codes.hpp"
 
 namespace cueplan::cli {
 

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "csv.hpp"
-#include "field_names.hpp"
+#include "cueplan/api/field_names.hpp"
 
 namespace cueplan::cli {
 namespace {

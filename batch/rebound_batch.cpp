@@ -5,7 +5,7 @@
 #include <span>
 
 #include "csv.hpp"
-#include "rebound_inputs.hpp"
+#include "cueplan/api/rebound_inputs.hpp"
 
 namespace cueplan::cli {
 namespace {

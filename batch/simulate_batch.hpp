@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "batch_csv.hpp"
+#include "cueplan/api/stroke.hpp"
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/problems/problem.hpp"
 
@@ -28,28 +29,6 @@ inline constexpr const char* kShotBatchHeader = "speed,aim_deg,topspin_k,sidespi
 inline constexpr const char* kShotBatchResultHeader =
     "final_x,final_y,cushion_hits,pocketed,hit_obstacle,duration,miss_distance,reaches_target,"
     "status,message,first_contact,pocketed_balls";
-
-// How the caller spells a shot's inputs in its messages (flags or CSV columns).
-struct ShotNames {
-  const char* speed;
-  const char* aim;
-  const char* topspin;
-  const char* sidespin;
-  const char* elevation;
-};
-inline constexpr ShotNames kShotFlagNames = {"--speed", "--aim", "--topspin-k", "--sidespin-k",
-                                             "--elevation-deg"};
-// The batch has no elevation column: its strokes are level.
-inline constexpr ShotNames kShotColumnNames = {"speed", "aim_deg", "topspin_k", "sidespin_k",
-                                               "elevation_deg"};
-
-// Empty when the shot can be simulated and a cue can play it (speed > 0 and at most
-// problems::kMaxStrokeSpeed, the tip within the miscue limit, the aim within a turn,
-// everything finite: problems/stroke_ranges.hpp); otherwise one line naming the input.
-std::string check_shot_inputs(const physics::Shot& shot, const ShotNames& names);
-// What is implausible about a shot that may be played (faster than a break shot), one
-// line each naming the input.
-std::vector<std::string> shot_warnings(const physics::Shot& shot, const ShotNames& names);
 
 // The batch of shots: chunks of rows simulated on the problem's scene (from
 // `threads` threads, 0: one per core); rows without an outcome (parse_error,

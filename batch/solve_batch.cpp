@@ -25,9 +25,9 @@
 #include "cueplan/physics/parallel.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
-#include "exit_codes.hpp"
-#include "impact_setup.hpp"
-#include "planner_flags.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "cueplan/api/impact.hpp"
+#include "cueplan/api/options.hpp"
 #include "solve_command.hpp"
 
 namespace cueplan::cli {

@@ -28,7 +28,7 @@
 
 #include "cueplan/physics/cushion_impact.hpp"
 #include "cueplan/physics/impact_table.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace {
 

@@ -30,7 +30,7 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/route.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace {
 

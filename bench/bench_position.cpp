@@ -31,7 +31,7 @@
 #include "cueplan/planner/position.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "plan_stats.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace {
 

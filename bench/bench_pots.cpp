@@ -25,7 +25,7 @@
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "plan_stats.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 #ifndef CUEPLAN_PROBLEMS_DIR
 #define CUEPLAN_PROBLEMS_DIR "problems"

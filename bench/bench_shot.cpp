@@ -19,7 +19,7 @@
 
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/physics/shot.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace {
 

@@ -20,14 +20,11 @@
 #include "cueplan/problems/game.hpp"
 #include "cueplan/planner/spin_map.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
-#include "field_names.hpp"
-#include "impact_setup.hpp"
-#include "planner_flags.hpp"
-#include "run_command.hpp"
-#include "simulate_batch.hpp"
-#include "simulate_command.hpp"
-#include "solve_command.hpp"
-#include "spinmap_command.hpp"
+#include "cueplan/api/field_names.hpp"
+#include "cueplan/api/impact.hpp"
+#include "cueplan/api/options.hpp"
+#include "cueplan/api/results.hpp"
+#include "cueplan/api/stroke.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -39,7 +36,7 @@ using nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kRetryWhileTableIsMade = 5;  // s
-const int kDefaultGrid = SpinmapArgs{}.grid;
+const int kDefaultGrid = kDefaultSpinmapGrid;
 
 // An option of a request, the command-line flag it stands for, and its JSON type.
 enum class Kind { number, whole, seed, boolean, text };
@@ -70,6 +67,24 @@ constexpr OptionName kSimulateOptions[] = {
     {"method", "--method", Kind::text},
     {"accuracy", "--accuracy", Kind::number},
     {"max_events", "--max-events", Kind::whole},
+};
+
+// The library's fields as a request names them: what the api's validator names its
+// errors by (cueplan/api/options.hpp).
+const std::initializer_list<FieldName> kOptionNames = {
+    {{"global"}, "options.global"},
+    {{"local"}, "options.local"},
+    {{"max_evaluations"}, "options.max_evaluations"},
+    {{"max_time_s"}, "options.max_time"},
+    {{"local_starts"}, "options.starts"},
+    {{"seed"}, "options.seed"},
+    {{"noise", "scale"}, "options.noise"},
+    {{"robust"}, "options.robust"},
+    {{"robustness_samples"}, "options.samples"},
+    {{"enforce_rigid_limit"}, "options.enforce_rigid_limit"},
+    {{"max_alternatives"}, "options.alternatives"},
+    {{"simulation", "impact_method"}, "options.method"},
+    {{"simulation", "impact_accuracy"}, "options.accuracy"},
 };
 
 // A request that stops short: the reply to send.
@@ -155,25 +170,6 @@ void check_option_keys(const ordered_json& options, std::span<const OptionName> 
     if (std::none_of(known.begin(), known.end(), [&](const OptionName& o) { return key == o.key; }))
       throw bad("options." + key,
                 "unknown field 'options." + key + "'; the options are " + listed(known));
-}
-
-// The command line's message with its flags named as the request's options; the field
-// is the option whose flag leads the message.
-Stop flag_error(std::string message, std::span<const OptionName> options) {
-  std::string field;
-  for (const OptionName& o : options)
-    if (message.rfind(std::string(o.flag) + " ", 0) == 0) field = std::string("options.") + o.key;
-  for (const OptionName& o : options)
-    for (size_t at = message.find(o.flag); at != std::string::npos;
-         at = message.find(o.flag, at + 1)) {
-      // Whole flags only: --max-time in "--max-time must ...", not a prefix of a longer one.
-      const size_t end = at + std::string_view(o.flag).size();
-      if (end < message.size() && (std::isalnum(static_cast<unsigned char>(message[end])) ||
-                                   message[end] == '-'))
-        continue;
-      message.replace(at, end - at, std::string("options.") + o.key);
-    }
-  return bad(field, message);
 }
 
 // Typed reads of one field; each names the field when the value has the wrong type.
@@ -303,28 +299,30 @@ SearchInputs read_search_options(const ordered_json& options, const std::string&
 
 phys::SimulationOptions read_impact(const ImpactArgs& impact) {
   phys::SimulationOptions simulation;
-  if (std::string why = read_impact_options(impact, &simulation); !why.empty())
-    throw flag_error(why, kPlannerOptions);
+  try {
+    impact_options(impact, kOptionNames, &simulation);
+  } catch (const InputError& e) {
+    throw bad(e.field(), e.what());
+  }
   return simulation;
 }
 
 plan::PlannerOptions read_planner(const SearchInputs& in,
                                   const phys::SimulationOptions& simulation) {
-  plan::PlannerOptions options;
   // One thread a request: the server's concurrency is its worker pool. The answer does
   // not depend on it (planner.hpp) while the evaluation budget ends the search.
-  if (std::string why = read_planner_options(in.planner, 1, simulation, &options); !why.empty())
-    throw flag_error(why, kPlannerOptions);
-  return options;
+  try {
+    return planner_options(in.planner, 1, simulation, kOptionNames);
+  } catch (const InputError& e) {
+    throw bad(e.field(), e.what());
+  }
 }
 
 // A library's field (planner options, spin map options, the shot, the problem) as the
 // request names it.
 std::string request_field(const phys::FieldPath& path) {
-  // The planner's, through the flags the command line names them by.
-  const std::string flag = name_of(path, planner_flag_names());
-  for (const OptionName& o : kPlannerOptions)
-    if (flag == o.flag) return std::string("options.") + o.key;
+  // The options', as the request names them.
+  if (const std::string option = name_of(path, kOptionNames); option != path.text()) return option;
   static const std::initializer_list<FieldName> kNames = {
       {{"max_events"}, "options.max_events"},
       {{"speed"}, "speed"},
@@ -492,8 +490,11 @@ ApiReply Api::simulate(std::string_view body) const {
       }
     }
     const int max_events = simulation.max_events;
-    if (std::string why = read_impact_options(impact, &simulation); !why.empty())
-      throw flag_error(why, kSimulateOptions);
+    try {
+      impact_options(impact, kOptionNames, &simulation);
+    } catch (const InputError& e) {
+      throw bad(e.field(), e.what());
+    }
     simulation.max_events = max_events;
 
     const ordered_json* stroke = member(request, "stroke");

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <utility>
 
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace cueplan::cli {
 namespace {

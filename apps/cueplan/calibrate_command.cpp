@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "cueplan/planner/fit.hpp"
-#include "exit_codes.hpp"
+#include "cueplan/api/exit_codes.hpp"
 #include "fit_command.hpp"
-#include "output_file.hpp"
+#include "cueplan/api/output_file.hpp"
 
 namespace cueplan::cli {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "calibrate_command.hpp"
 #include "collide_command.hpp"
-#include "exit_codes.hpp"
+#include "cueplan/api/exit_codes.hpp"
 #include "figures_command.hpp"
 #include "fit_command.hpp"
 #include "merge_command.hpp"

@@ -13,8 +13,8 @@
 #include "batch_csv.hpp"
 #include "collide_batch.hpp"
 #include "csv.hpp"
-#include "exit_codes.hpp"
-#include "shot_words.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "cueplan/api/words.hpp"
 
 namespace cueplan::cli {
 namespace {

@@ -11,8 +11,8 @@
 #include "csv.hpp"
 #include "cueplan/draw/plot.hpp"
 #include "cueplan/physics/cushion_impact.hpp"
-#include "exit_codes.hpp"
-#include "output_file.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "cueplan/api/output_file.hpp"
 
 namespace cueplan::cli {
 namespace {

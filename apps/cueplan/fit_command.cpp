@@ -14,9 +14,9 @@
 #include "cueplan/parallel.hpp"
 #include "cueplan/problems/presets.hpp"
 #include "cueplan/problems/problem.hpp"
-#include "exit_codes.hpp"
-#include "output_file.hpp"
-#include "shot_words.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "cueplan/api/output_file.hpp"
+#include "cueplan/api/words.hpp"
 
 namespace cueplan::cli {
 namespace {

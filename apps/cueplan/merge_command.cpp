@@ -10,8 +10,8 @@
 #include <queue>
 #include <sstream>
 
-#include "exit_codes.hpp"
-#include "output_file.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "cueplan/api/output_file.hpp"
 
 namespace cueplan::cli {
 namespace {

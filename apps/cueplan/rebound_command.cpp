@@ -8,13 +8,13 @@
 #include <ostream>
 
 #include "cueplan/physics/impact_table.hpp"
-#include "exit_codes.hpp"
-#include "field_names.hpp"
-#include "output_file.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "cueplan/api/field_names.hpp"
+#include "cueplan/api/output_file.hpp"
 #include "rebound_batch.hpp"
-#include "rebound_inputs.hpp"
-#include "shot_words.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/rebound_inputs.hpp"
+#include "cueplan/api/words.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace cueplan::cli {
 namespace {

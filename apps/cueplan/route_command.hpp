@@ -10,6 +10,7 @@
 
 #include "cueplan/planner/route.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "cueplan/api/results.hpp"
 
 namespace CLI {
 class App;
@@ -60,8 +61,4 @@ class RouteCommand {
 };
 
 // What `cueplan route --json` prints for a route (svg_file: the drawing written, or empty).
-nlohmann::ordered_json route_json(const problems::Problem& problem,
-                                  const planner::RouteOptions& o, const planner::RouteResult& r,
-                                  const std::string& svg_file);
-
 }  // namespace cueplan::cli

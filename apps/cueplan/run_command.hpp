@@ -11,6 +11,7 @@
 
 #include "cueplan/planner/runout.hpp"
 #include "cueplan/problems/game.hpp"
+#include "cueplan/api/results.hpp"
 
 namespace CLI {
 class App;
@@ -53,8 +54,4 @@ class RunCommand {
 
 // What `cueplan run --json` prints: plan [{ball, pocket, shot, success, ...}], runout
 // {p, low, high, samples}, mean_potted, mean_break (snooker), deaths, policy, ...
-nlohmann::ordered_json run_json(const problems::Layout& layout, const problems::GameState& start,
-                                const planner::RunoutOptions& options,
-                                const planner::RunoutResult& result);
-
 }  // namespace cueplan::cli

@@ -16,9 +16,9 @@
 #include <thread>
 
 #include "cueplan/physics/cushion_impact.hpp"
-#include "exit_codes.hpp"
+#include "cueplan/api/exit_codes.hpp"
 #include "serve_server.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 namespace cueplan::cli {
 namespace {

@@ -14,7 +14,8 @@
 #include "cueplan/physics/trace.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
-#include "impact_setup.hpp"
+#include "cueplan/api/impact.hpp"
+#include "cueplan/api/results.hpp"
 
 namespace CLI {
 class App;
@@ -91,25 +92,4 @@ class SimulateCommand {
 };
 
 // The success of the stroke under a player's noise (`cueplan simulate --samples N`).
-struct SimulatedSuccess {
-  planner::NoiseModel noise;
-  uint64_t seed = 1;
-  planner::Success success;  // its estimates' samples are N
-};
-
-// What `cueplan simulate --json` prints for one stroke (svg_file: the drawing written, or
-// empty; success: with --samples, reported as `success` {position, both, pot when the
-// problem has one} and `noise`).
-// Every ball's state every `interval` s and at each event (`cueplan simulate --trace`):
-// CSV with a header naming units, or (json) the rows as objects.
-void write_trace_csv(std::ostream& out, const physics::ShotTrace& trace,
-                            const physics::ShotResult& r);
-nlohmann::ordered_json trace_json(const physics::ShotTrace& trace, const physics::ShotResult& r,
-                                  double interval);
-
-nlohmann::ordered_json simulate_json(const problems::Problem& problem, const physics::Shot& shot,
-                                     const physics::SimulationOptions& options,
-                                     const physics::ShotResult& r, const std::string& svg_file,
-                                     const std::optional<SimulatedSuccess>& success = {});
-
 }  // namespace cueplan::cli

@@ -9,9 +9,10 @@
 
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
-#include "impact_setup.hpp"
-#include "planner_flags.hpp"
+#include "cueplan/api/impact.hpp"
+#include "cueplan/api/options.hpp"
 #include "solve_batch.hpp"
+#include "cueplan/api/results.hpp"
 
 namespace CLI {
 class App;
@@ -59,8 +60,4 @@ class SolveCommand {
 };
 
 // What `cueplan solve --json` prints for a plan (svg_file: the drawing written, or empty).
-nlohmann::ordered_json solve_json(const problems::Problem& problem,
-                                  const planner::PlannerOptions& options,
-                                  const planner::PlanResult& r, const std::string& svg_file);
-
 }  // namespace cueplan::cli

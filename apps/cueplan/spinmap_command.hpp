@@ -13,8 +13,9 @@
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/spin_map.hpp"
 #include "cueplan/problems/problem.hpp"
-#include "impact_setup.hpp"
-#include "planner_flags.hpp"
+#include "cueplan/api/impact.hpp"
+#include "cueplan/api/options.hpp"
+#include "cueplan/api/results.hpp"
 
 namespace CLI {
 class App;
@@ -28,7 +29,7 @@ struct SpinmapArgs {
   std::string out_file;      // --out, .svg, .png or .pdf
   double speed = NAN;        // m/s, --speed (with --aim; neither: the planner's)
   double aim_deg = NAN;      // deg from +x, --aim
-  int grid = 41;             // points across the disc's diameter
+  int grid = kDefaultSpinmapGrid;  // points across the disc's diameter
   int threads = 0;           // 0: one per core
   ImpactArgs impact;
   PlannerArgs planner;  // used only without --speed and --aim
@@ -37,9 +38,6 @@ struct SpinmapArgs {
 };
 
 // Noisy strokes per spin with --success when --samples is not given, and the most.
-inline constexpr int kDefaultSuccessSamples = 24;
-inline constexpr int kMaxSuccessSamples = 10000;
-
 class SpinmapCommand {
  public:
   // Registers `spinmap` and its flags on `parent`; the flags write into this object, so
@@ -70,25 +68,4 @@ class SpinmapCommand {
 };
 
 // Where a spin map's speed and aim came from: given, or the planner's best stroke.
-struct StrokeSource {
-  bool planned = false;
-  planner::PlanResult plan;  // when planned
-};
-
-// What `cueplan spinmap --json` prints for a map (picture_file: the picture written, whose
-// extension gives `format`; empty for none, and then `out` and `format` are left out).
-// `seconds`: the wall-clock time of the whole command.
-nlohmann::ordered_json spinmap_json(const problems::Problem& problem, const planner::SpinMap& map,
-                                    const StrokeSource& source,
-                                    const physics::SimulationOptions& simulation,
-                                    const std::string& picture_file, double seconds);
-
-// Every grid spin of the map, row by row as map.points, each as `landing_spins` gives
-// one (topspin_k, sidespin_k, tip_right, tip_up, final_position, miss_distance,
-// cushion_hits) with its `outcome` (the simulator's status), `kind` (the `outcomes` key
-// it is counted under: at_rest_allowed_cushions, at_rest_other_cushions, pocketed,
-// hit_obstacle, no_outcome) and `lands`: what a picture of the whole disc needs.
-nlohmann::ordered_json spinmap_cells_json(const problems::Problem& problem,
-                                          const planner::SpinMap& map);
-
 }  // namespace cueplan::cli

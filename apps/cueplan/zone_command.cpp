@@ -16,10 +16,11 @@
 #include "cueplan/planner/position.hpp"
 #include "cueplan/problems/problem.hpp"
 #include "cueplan/problems/stroke_ranges.hpp"
-#include "exit_codes.hpp"
-#include "output_file.hpp"
-#include "shot_report.hpp"
-#include "shot_words.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "search_flags.hpp"
+#include "cueplan/api/output_file.hpp"
+#include "cueplan/api/shot_report.hpp"
+#include "cueplan/api/words.hpp"
 
 namespace cueplan::cli {
 namespace {

@@ -8,8 +8,8 @@
 #include <iosfwd>
 #include <string>
 
-#include "impact_setup.hpp"
-#include "planner_flags.hpp"
+#include "cueplan/api/impact.hpp"
+#include "cueplan/api/options.hpp"
 
 namespace CLI {
 class App;

@@ -8,17 +8,18 @@
 #include <limits>
 
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/physics/vec2.hpp"
 #include "polynomial_roots.hpp"
 
 namespace cueplan::physics::detail {
 
 inline constexpr double kNever = std::numeric_limits<double>::infinity();
 
-inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+using vec2::operator+;
+using vec2::operator-;
+using vec2::operator*;
+using vec2::dot;
+using vec2::norm;
 
 // A ball's state on the cloth.
 struct Ball {

@@ -286,6 +286,154 @@ bool nominally_better(const Final& a, const Final& b) {
   return a.shot.miss_distance < b.shot.miss_distance;
 }
 
+// How a search ended, decided before it is worded (as Ceres keeps Solver::Summary
+// apart from its BriefReport): the outcome and the numbers the report quotes.
+enum class PlanOutcome {
+  solved,
+  no_kick_made,               // only kick or bank routes, none a legal stroke
+  nothing_simulated_in_time,  // the clock ran out before any shot
+  nothing_simulated,          // no shot within the limits could be simulated
+  out_of_time,                // unsolved when the time budget ran out
+  out_of_evaluations,         // unsolved when the evaluation budget ran out
+  too_few_searches,           // unsolved: fewer local searches fitted than asked for
+  no_solution,                // unsolved after every local search converged
+};
+
+struct PlanSummary {
+  PlanOutcome outcome = PlanOutcome::nothing_simulated;
+  double max_time_s = 0.0;
+  int max_evaluations = 0;
+  bool robust = false;
+  bool enforce_rigid_limit = false;
+  bool kicked = false;        // the finals include kicks
+  int kick_routes_tried = 0;
+  int robust_improved = 0;    // shots the robust polish improved
+  size_t finals = 0;          // shots kept, one per family
+  int searched = 0;           // local searches asked for, at most the families
+  size_t families_left = 0;   // candidate routes never polished
+
+  PlanStatus status() const {
+    switch (outcome) {
+      case PlanOutcome::solved: return PlanStatus::solved;
+      case PlanOutcome::nothing_simulated_in_time:
+      case PlanOutcome::out_of_time:
+      case PlanOutcome::out_of_evaluations:
+      case PlanOutcome::too_few_searches: return PlanStatus::budget_exhausted;
+      case PlanOutcome::no_kick_made:
+      case PlanOutcome::nothing_simulated:
+      case PlanOutcome::no_solution: return PlanStatus::no_solution_found;
+    }
+    return PlanStatus::no_solution_found;
+  }
+};
+
+// The sentence that explains a summary: the stroke found in a player's words, how it
+// fares and what to change. `result` holds the reported strokes and the search's counts.
+std::string brief_report(const PlanSummary& s, const problems::Problem& problem,
+                         const PlanResult& result) {
+  const double tol = problem.tolerance;
+  if (s.outcome == PlanOutcome::no_kick_made) {
+    std::string ruled;
+    for (const std::string& r : result.ruled_out) ruled += (ruled.empty() ? "" : "; ") + r;
+    return fmt::format(
+        "No solution found: {} kick or bank route{} within the limits, {} tried on the exact "
+        "model (speeds and spins, aim solved for each), and none made a legal stroke within "
+        "the time budget ({:.3g} s){}.",
+        result.kick_routes, result.kick_routes == 1 ? "" : "s", s.kick_routes_tried,
+        s.max_time_s, ruled.empty() ? "" : "; ruled out: " + ruled);
+  }
+  if (s.outcome == PlanOutcome::nothing_simulated_in_time)
+    return fmt::format("The time budget ({:.3g} s) ran out before any shot could be simulated.",
+                       s.max_time_s);
+  if (s.outcome == PlanOutcome::nothing_simulated)
+    return "No shot within the limits could be simulated.";
+  std::string message;
+  const PlannedShot& best = result.best;
+  std::string where = fmt::format("{} ({}) stops {} from the target (tolerance {})", best.family,
+                                  describe_stroke(best.shot), mm(best.miss_distance), mm(tol));
+  if (problem.is_escape())
+    where = fmt::format("{} ({}) {}", best.family, describe_stroke(best.shot),
+                        best.solves ? "makes a legal hit (" + *problem.first_contact + " first)"
+                                    : "fails: " + best.failure_reason);
+  if (problem.pot) {
+    const std::string pot = fmt::format("{} ({}) {} {} in the {} pocket", best.family,
+                                        describe_stroke(best.shot),
+                                        best.pot && best.pot->made ? "pots" : "does not pot",
+                                        problem.pot->ball,
+                                        problems::pocket_name(problem.scene, problem.pot->pocket));
+    where = problem.has_target
+                ? fmt::format("{} and stops {} from the target (tolerance {})", pot,
+                              mm(best.miss_distance), mm(tol))
+                : pot;
+  }
+  if (s.kicked && !best.route_words.empty()) where += ": " + best.route_words + ",";
+  if (s.outcome == PlanOutcome::solved) {
+    message = "Solved: " + where;
+    const Estimate& e = best.success.both;
+    if (e.samples > 0)
+      message += fmt::format(
+          " and succeeds in {:.0f} % of strokes with a player's error (95 % interval {:.0f}-{:.0f} "
+          "%)",
+          100.0 * e.p, 100.0 * e.low, 100.0 * e.high);
+    if (best.opponent_pot)
+      message += fmt::format("; it leaves the opponent at best a {:.0f} % pot",
+                             100.0 * *best.opponent_pot);
+    if (e.samples > 0 && best.success.pot && (problem.has_target || best.success.next))
+      message += fmt::format("; the pot alone {:.0f} % ({:.0f}-{:.0f} %)",
+                             100.0 * best.success.pot->p, 100.0 * best.success.pot->low,
+                             100.0 * best.success.pot->high);
+    if (e.samples > 0 && best.success.next)
+      message += fmt::format("; the next pot ({} into the {}) {:.0f} % ({:.0f}-{:.0f} %)",
+                             problem.next.front().ball,
+                             problems::pocket_name(problem.scene, problem.next.front().pocket),
+                             100.0 * best.success.next->p, 100.0 * best.success.next->low,
+                             100.0 * best.success.next->high);
+    message += ".";
+    if (!result.alternatives.empty())
+      message += fmt::format(" {} other way{} found.", result.alternatives.size(),
+                             result.alternatives.size() == 1 ? "" : "s");
+    if (s.robust)
+      message += fmt::format(" Robust polish improved {} of {} shots.", s.robust_improved,
+                             s.finals);
+  } else {
+    if (!best.violations.empty()) where += "; but " + best.violations;
+    if (s.outcome == PlanOutcome::out_of_time) {
+      message = fmt::format("Budget exhausted: the time budget ({:.3g} s) ran out before a "
+                            "shot reached the target. The closest found: ",
+                            s.max_time_s) +
+                where + ". Allow more time (max_time_s).";
+    } else if (s.outcome == PlanOutcome::out_of_evaluations) {
+      message = fmt::format("Budget exhausted: the evaluation budget ({} shot simulations) "
+                            "ran out before a shot reached the target. The closest found: ",
+                            s.max_evaluations) +
+                where + ". Allow more evaluations (max_evaluations).";
+    } else if (s.outcome == PlanOutcome::too_few_searches) {
+      message = fmt::format("Budget exhausted: the evaluation budget ({} shot simulations) "
+                            "left room for only {} of {} local searches, and none reached "
+                            "the target. The closest found: ",
+                            s.max_evaluations, result.local_searches, s.searched) +
+                where + ". Allow more evaluations (max_evaluations).";
+    } else {
+      message =
+          "No solution found within the limits: the closest shot found, " + where +
+          fmt::format(". All {} local searches converged (or stopped improving) after {} shot "
+                      "simulations, so no stroke within the limits seems to reach the target",
+                      result.local_searches, result.evaluations);
+      message += s.families_left > 0
+                     ? fmt::format(" ({} weaker candidate routes were not polished).",
+                                   s.families_left)
+                     : ".";
+    }
+  }
+  if (best.rigid_limit_exceeded && !s.enforce_rigid_limit)
+    message += fmt::format(" Note: the cue ball meets a cushion at {:.2f} m/s normal "
+                           "speed, above the {:.1f} m/s up to which the rigid-cushion "
+                           "model is trusted.",
+                           best.max_cushion_normal_speed,
+                           problem.scene.ball_and_cushion.rigid_speed_limit);
+  return message;
+}
+
 // Everything one plan() call works with, and the stages that fill it in order.
 class Planning {
  public:
@@ -884,29 +1032,33 @@ class Planning {
     coach_rank();
   }
 
-  // 8. Status and the sentence that explains it.
+  // 8. Status and the sentence that explains it: deciding (the status, the numbers it
+  // rests on, the reported strokes' extra simulations) apart from wording.
   void report_stage(const Task& task) {
+    const PlanSummary summary = summarise(task);
+    result_.status = summary.status();
+    result_.message = brief_report(summary, problem_, result_);
+  }
+
+  // The outcome of the search and what its report quotes. Fills the best stroke, the
+  // alternatives and what the reported strokes need simulated (their pots and routes in
+  // a player's words), counting those simulations in result_.evaluations.
+  PlanSummary summarise(const Task& task) {
     PlanResult& result = result_;
-    const double tol = problem_.tolerance;
-    if (finals_.empty() && kick_tried_) {
-      result.status = PlanStatus::no_solution_found;
-      std::string ruled;
-      for (const std::string& r : result.ruled_out) ruled += (ruled.empty() ? "" : "; ") + r;
-      result.message = fmt::format(
-          "No solution found: {} kick or bank route{} within the limits, {} tried on the exact "
-          "model (speeds and spins, aim solved for each), and none made a legal stroke within "
-          "the time budget ({:.3g} s){}.",
-          result.kick_routes, result.kick_routes == 1 ? "" : "s", kick_routes_tried_,
-          options_.max_time_s, ruled.empty() ? "" : "; ruled out: " + ruled);
-      return;
-    }
+    PlanSummary s;
+    s.max_time_s = options_.max_time_s;
+    s.max_evaluations = options_.max_evaluations;
+    s.robust = options_.robust;
+    s.enforce_rigid_limit = options_.enforce_rigid_limit;
+    s.kicked = kicked_;
+    s.kick_routes_tried = kick_routes_tried_;
+    s.robust_improved = robust_improved_;
+    s.finals = finals_.size();
     if (finals_.empty()) {
-      result.status = timed_out_ ? PlanStatus::budget_exhausted : PlanStatus::no_solution_found;
-      result.message = timed_out_ ? fmt::format("The time budget ({:.3g} s) ran out before any "
-                                                "shot could be simulated.",
-                                                options_.max_time_s)
-                                  : "No shot within the limits could be simulated.";
-      return;
+      s.outcome = kick_tried_ ? PlanOutcome::no_kick_made
+                  : timed_out_ ? PlanOutcome::nothing_simulated_in_time
+                               : PlanOutcome::nothing_simulated;
+      return s;
     }
     result.best = finals_.front().shot;
     for (size_t i = 1; i < finals_.size(); ++i) result.alternatives.push_back(finals_[i].shot);
@@ -938,98 +1090,21 @@ class Planning {
         p->route_words = detail::route_words(problem_, p->shot, r);
       }
     }
-    const PlannedShot& best = result.best;
-    std::string where = fmt::format("{} ({}) stops {} from the target (tolerance {})", best.family,
-                                    describe_stroke(best.shot), mm(best.miss_distance), mm(tol));
-    if (problem_.is_escape())
-      where = fmt::format("{} ({}) {}", best.family, describe_stroke(best.shot),
-                          best.solves ? "makes a legal hit (" + *problem_.first_contact + " first)"
-                                      : "fails: " + best.failure_reason);
-    if (problem_.pot) {
-      const std::string pot = fmt::format("{} ({}) {} {} in the {} pocket", best.family,
-                                          describe_stroke(best.shot),
-                                          best.pot && best.pot->made ? "pots" : "does not pot",
-                                          problem_.pot->ball,
-                                          problems::pocket_name(problem_.scene, problem_.pot->pocket));
-      where = problem_.has_target
-                  ? fmt::format("{} and stops {} from the target (tolerance {})", pot,
-                                mm(best.miss_distance), mm(tol))
-                  : pot;
-    }
-    if (kicked_ && !best.route_words.empty()) where += ": " + best.route_words + ",";
-    const int searched = std::min<int>(options_.local_starts, static_cast<int>(starts_.size()));
-    if (best.solves) {
-      result.status = PlanStatus::solved;
-      result.message = "Solved: " + where;
-      const Estimate& e = best.success.both;
-      if (e.samples > 0)
-        result.message += fmt::format(
-            " and succeeds in {:.0f} % of strokes with a player's error (95 % interval {:.0f}-{:.0f} "
-            "%)",
-            100.0 * e.p, 100.0 * e.low, 100.0 * e.high);
-      if (best.opponent_pot)
-        result.message += fmt::format("; it leaves the opponent at best a {:.0f} % pot",
-                                      100.0 * *best.opponent_pot);
-      if (e.samples > 0 && best.success.pot && (problem_.has_target || best.success.next))
-        result.message += fmt::format("; the pot alone {:.0f} % ({:.0f}-{:.0f} %)",
-                                      100.0 * best.success.pot->p, 100.0 * best.success.pot->low,
-                                      100.0 * best.success.pot->high);
-      if (e.samples > 0 && best.success.next)
-        result.message += fmt::format("; the next pot ({} into the {}) {:.0f} % ({:.0f}-{:.0f} %)",
-                                      problem_.next.front().ball,
-                                      problems::pocket_name(problem_.scene, problem_.next.front().pocket),
-                                      100.0 * best.success.next->p, 100.0 * best.success.next->low,
-                                      100.0 * best.success.next->high);
-      result.message += ".";
-      if (!result.alternatives.empty())
-        result.message += fmt::format(" {} other way{} found.", result.alternatives.size(),
-                                      result.alternatives.size() == 1 ? "" : "s");
-      if (options_.robust)
-        result.message += fmt::format(" Robust polish improved {} of {} shots.", robust_improved_,
-                                      finals_.size());
-    } else {
-      if (!best.violations.empty()) where += "; but " + best.violations;
-      if (timed_out_) {
-        result.status = PlanStatus::budget_exhausted;
-        result.message = fmt::format("Budget exhausted: the time budget ({:.3g} s) ran out before a "
-                                     "shot reached the target. The closest found: ",
-                                     options_.max_time_s) +
-                         where + ". Allow more time (max_time_s).";
-      } else if (out_of_evaluations_) {
-        result.status = PlanStatus::budget_exhausted;
-        result.message = fmt::format("Budget exhausted: the evaluation budget ({} shot simulations) "
-                                     "ran out before a shot reached the target. The closest found: ",
-                                     options_.max_evaluations) +
-                         where + ". Allow more evaluations (max_evaluations).";
-      } else if (result.local_searches < searched) {
-        // Every polish converged, but fewer than local_starts fitted in the budget: the
-        // search has not looked far enough to say that no stroke reaches the target.
-        result.status = PlanStatus::budget_exhausted;
-        result.message = fmt::format("Budget exhausted: the evaluation budget ({} shot simulations) "
-                                     "left room for only {} of {} local searches, and none reached "
-                                     "the target. The closest found: ",
-                                     options_.max_evaluations, result.local_searches, searched) +
-                         where + ". Allow more evaluations (max_evaluations).";
-      } else {
-        const size_t families_left = starts_.size() - next_start_;
-        result.status = PlanStatus::no_solution_found;
-        result.message =
-            "No solution found within the limits: the closest shot found, " + where +
-            fmt::format(". All {} local searches converged (or stopped improving) after {} shot "
-                        "simulations, so no stroke within the limits seems to reach the target",
-                        result.local_searches, result.evaluations);
-        result.message += families_left > 0
-                              ? fmt::format(" ({} weaker candidate routes were not polished).",
-                                            families_left)
-                              : ".";
-      }
-    }
-    if (best.rigid_limit_exceeded && !options_.enforce_rigid_limit)
-      result.message += fmt::format(" Note: the cue ball meets a cushion at {:.2f} m/s normal "
-                                    "speed, above the {:.1f} m/s up to which the rigid-cushion "
-                                    "model is trusted.",
-                                    best.max_cushion_normal_speed,
-                                    problem_.scene.ball_and_cushion.rigid_speed_limit);
+    s.searched = std::min<int>(options_.local_starts, static_cast<int>(starts_.size()));
+    s.families_left = starts_.size() - next_start_;
+    if (result.best.solves)
+      s.outcome = PlanOutcome::solved;
+    else if (timed_out_)
+      s.outcome = PlanOutcome::out_of_time;
+    else if (out_of_evaluations_)
+      s.outcome = PlanOutcome::out_of_evaluations;
+    else if (result.local_searches < s.searched)
+      // Every polish converged, but fewer than local_starts fitted in the budget: the
+      // search has not looked far enough to say that no stroke reaches the target.
+      s.outcome = PlanOutcome::too_few_searches;
+    else
+      s.outcome = PlanOutcome::no_solution;
+    return s;
   }
 
   const problems::Problem& problem_;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "cueplan/physics/vec2.hpp"
 #include "search_space.hpp"
 #include "task.hpp"
 
@@ -25,10 +26,10 @@ constexpr double kMaxAimStep = 2.0;  // deg: a Newton step is never larger
 // position may need it.
 constexpr double kPotWindow = 0.6;
 
-Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+using physics::vec2::operator-;
+using physics::vec2::cross;
+using physics::vec2::dot;
+using physics::vec2::norm;
 Vec2 unit(Vec2 a) {
   const double n = norm(a);
   return n > 0.0 ? Vec2{a.x / n, a.y / n} : Vec2{1.0, 0.0};
@@ -43,13 +44,13 @@ double angle_between(Vec2 a, Vec2 b) { return std::atan2(cross(a, b), dot(a, b))
 // passes by (radius: of the balls).
 std::optional<double> struck_direction(Vec2 from, double dir_deg, Vec2 at, double radius) {
   const Vec2 u = along(dir_deg);
-  const Vec2 d = sub(at, from);
+  const Vec2 d = at - from;
   const double ahead = dot(d, u);
   const double offset = cross(u, d);  // > 0: the struck ball lies to the left
   if (ahead <= 0.0 || std::abs(offset) >= 2.0 * radius) return std::nullopt;
   const double back = std::sqrt(4.0 * radius * radius - offset * offset);
   const Vec2 contact{from.x + (ahead - back) * u.x, from.y + (ahead - back) * u.y};
-  return angle_of(sub(at, contact));
+  return angle_of(at - contact);
 }
 
 // The ball's straight motion after `e`, with its sliding in closed form (PHYSICS.md,
@@ -70,7 +71,7 @@ Line line_toward(const physics::Scene& scene, const physics::ShotEvent& e, Vec2 
   const Vec2 a{-mu * g * u.x / slip, -mu * g * u.y / slip};
   const double t_roll = 2.0 * slip / (7.0 * mu * g);
   // dot(p(t) - pocket, normal) = 0 with p(t) = p0 + v t + a t^2 / 2.
-  const double c0 = dot(sub(e.position, pocket), normal), c1 = dot(v, normal),
+  const double c0 = dot(e.position - pocket, normal), c1 = dot(v, normal),
                c2 = 0.5 * dot(a, normal);
   double t = -1.0;
   if (std::abs(c2) < 1e-15) {
@@ -116,16 +117,16 @@ PotAim::PotAim(const problems::Problem& problem) : problem_(problem) {
     if (scene.balls[i].name == pot_ball_) pot_index_ = static_cast<int>(i) + 1;
   if (first != pot_ball_) chain_.push_back(centre(first));
   chain_.push_back(centre(pot_ball_));
-  const Vec2 line = unit(sub(pocket_, chain_.back()));
+  const Vec2 line = unit(pocket_ - chain_.back());
   across_ = {-line.y, line.x};
   // Ghost balls from the pocket back to the cue ball.
   const double two_r = 2.0 * scene.radius();
   Vec2 aim_point = pocket_;
   for (size_t i = chain_.size(); i-- > 0;) {
-    const Vec2 d = unit(sub(aim_point, chain_[i]));
+    const Vec2 d = unit(aim_point - chain_[i]);
     aim_point = {chain_[i].x - two_r * d.x, chain_[i].y - two_r * d.y};
   }
-  ghost_aim_deg_ = wrap_degrees(angle_of(sub(aim_point, problem.cue_ball)));
+  ghost_aim_deg_ = wrap_degrees(angle_of(aim_point - problem.cue_ball));
 }
 
 std::optional<double> PotAim::geometric_direction(double aim_deg) const {
@@ -147,10 +148,10 @@ std::optional<double> PotAim::lateral_of(const physics::ShotResult& result) cons
   if (pot_index_ <= 0 || pot_index_ >= static_cast<int>(result.balls.size())) return std::nullopt;
   const physics::ShotEvent* hit = first_contact_of(result.balls[static_cast<size_t>(pot_index_)]);
   if (hit == nullptr) return std::nullopt;
-  const Vec2 to_pocket = sub(pocket_, hit->position);
+  const Vec2 to_pocket = pocket_ - hit->position;
   if (!(norm(to_pocket) > 0.0)) return std::nullopt;
   const Line line = line_toward(problem_.scene, *hit, pocket_, unit(to_pocket));
-  return -cross(line.direction, sub(pocket_, line.point));
+  return -cross(line.direction, pocket_ - line.point);
 }
 
 std::optional<double> PotAim::direction_error(const physics::ShotResult& result,
@@ -158,19 +159,19 @@ std::optional<double> PotAim::direction_error(const physics::ShotResult& result,
   if (pot_index_ <= 0 || pot_index_ >= static_cast<int>(result.balls.size())) return std::nullopt;
   const physics::ShotEvent* hit = first_contact_of(result.balls[static_cast<size_t>(pot_index_)]);
   if (hit == nullptr) return std::nullopt;
-  const Vec2 to_pocket = sub(pocket_, hit->position);
+  const Vec2 to_pocket = pocket_ - hit->position;
   const double distance = norm(to_pocket);
   if (!(distance > 0.0)) return std::nullopt;
   const Line line = line_toward(problem_.scene, *hit, pocket_, unit(to_pocket));
   // Where the pocket's centre lies from the ball's line: > 0 to its left.
-  const double lateral = cross(line.direction, sub(pocket_, line.point));
+  const double lateral = cross(line.direction, pocket_ - line.point);
   if (margin_m) *margin_m = capture_ - std::abs(lateral);
   // The point aimed at, `lateral_m` across the pocket.
   const Vec2 aim_point{pocket_.x + lateral_m * across_.x, pocket_.y + lateral_m * across_.y};
-  const Vec2 to_aim = sub(aim_point, hit->position);
+  const Vec2 to_aim = aim_point - hit->position;
   if (dot(line.direction, to_aim) <= 0.0)
-    return angle_between(unit(sub(line.point, hit->position)), to_aim);
-  const double off = cross(line.direction, sub(aim_point, line.point));
+    return angle_between(unit(line.point - hit->position), to_aim);
+  const double off = cross(line.direction, aim_point - line.point);
   return std::asin(std::clamp(off / norm(to_aim), -1.0, 1.0)) * kDeg;
 }
 
@@ -280,7 +281,7 @@ PotReport pot_report(const Task& task, const PotAim& aim, const physics::Shot& s
     const Vec2 d = unit(hit->velocity);
     const double reach = jaws->shape.point_radius + problem.scene.contact_offset();
     for (int side = 0; side < 2; ++side) {
-      const double clear = std::abs(cross(d, sub(jaws->point_centre[side], hit->position))) - reach;
+      const double clear = std::abs(cross(d, jaws->point_centre[side] - hit->position)) - reach;
       if (!p.jaw_clearance_m || clear < *p.jaw_clearance_m) {
         p.jaw_clearance_m = clear;
         p.near_jaw = side == 0 ? "left" : "right";
@@ -301,7 +302,7 @@ PotReport pot_report(const Task& task, const PotAim& aim, const physics::Shot& s
           e.time != hit->time)
         continue;
       const Vec2 incoming = unit(striker.events[i - 1].velocity);
-      const Vec2 centres = unit(sub(hit->position, e.position));
+      const Vec2 centres = unit(hit->position - e.position);
       const double cut = angle_between(incoming, centres);
       p.cut_deg = std::abs(cut);
       p.cut_side = cut > 0.0 ? 1 : cut < 0.0 ? -1 : 0;

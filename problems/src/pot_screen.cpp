@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "cueplan/physics/vec2.hpp"
 #include "cueplan/problems/problem.hpp"
 
 namespace cueplan::problems {
@@ -38,16 +39,16 @@ constexpr double kDirectionMargin = 3.0 * std::numbers::pi / 180.0;  // rad, eac
 constexpr int kSamples = 2048;  // directions across the cone
 constexpr double kImpossibleCut = -0.05;  // cos of the cut: beyond about 93 degrees
 
-Vec2 sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+using physics::vec2::operator-;
+using physics::vec2::dot;
+using physics::vec2::norm;
 
 // Distance from p to the segment [a, b].
 double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = sub(b, a);
+  const Vec2 ab = b - a;
   const double len2 = dot(ab, ab);
-  const double t = len2 > 0.0 ? std::clamp(dot(sub(p, a), ab) / len2, 0.0, 1.0) : 0.0;
-  return norm(sub(p, {a.x + t * ab.x, a.y + t * ab.y}));
+  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return norm(p - Vec2{a.x + t * ab.x, a.y + t * ab.y});
 }
 
 struct Blocker {
@@ -91,7 +92,7 @@ std::optional<PotScreen> screened_pot(const Problem& problem) {
   for (size_t i = 0; i < scene.obstacles.size(); ++i)
     blockers.push_back({fmt::format("obstacles[{}]", i), scene.obstacles[i]});
 
-  const Vec2 oc = sub(c, o);
+  const Vec2 oc = c - o;
   const double distance = norm(oc);
   if (!(distance > capture)) return std::nullopt;
   const double centre_angle = std::atan2(oc.y, oc.x);
@@ -124,7 +125,7 @@ std::optional<PotScreen> screened_pot(const Problem& problem) {
     const double a = centre_angle - half + step * i;
     const Vec2 d{std::cos(a), std::sin(a)};
     const Vec2 ghost{o.x - 2.0 * radius * d.x, o.y - 2.0 * radius * d.y};
-    const Vec2 path = sub(ghost, q);
+    const Vec2 path = ghost - q;
     const double length = norm(path);
     if (length > 0.0 && dot(path, d) / length < kImpossibleCut) {
       too_thin = true;

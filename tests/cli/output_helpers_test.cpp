@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "csv.hpp"
-#include "output_file.hpp"
+#include "cueplan/api/output_file.hpp"
 
 namespace cueplan::cli {
 namespace {

@@ -1,5 +1,5 @@
 // The command line's cache of impact tables: where it lives, and reuse of its files.
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 #include "support/physics_checks.hpp"
 

@@ -1,4 +1,4 @@
-#include "shot_words.hpp"
+#include "cueplan/api/words.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/planner/planner.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 namespace {
 
 namespace phys = cueplan::physics;
@@ -97,4 +97,4 @@ std::string cushions_allowed(const problems::Limits& limits) {
              : std::to_string(limits.cushions_min) + " to " + std::to_string(limits.cushions_max);
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api

@@ -1,21 +1,18 @@
-// The planner's flags, shared by `cueplan solve` and `cueplan spinmap` (which plans
-// the stroke first when no --speed and --aim are given), and their reading into
-// planner::PlannerOptions with one-line messages that name the flag.
+// The planner's options as every face asks for them (the command line's flags, the
+// server's request options, a batch's lines), and the one validator that reads them into
+// planner::PlannerOptions: its errors are InputErrors naming the field as the caller does.
 #pragma once
 
 #include <cstdint>
 #include <span>
 #include <string>
 
-#include "field_names.hpp"
+#include "cueplan/api/errors.hpp"
+#include "cueplan/api/field_names.hpp"
 
 #include "cueplan/planner/planner.hpp"
 
-namespace CLI {
-class App;
-}
-
-namespace cueplan::cli {
+namespace cueplan::api {
 
 // What the command line asked of the planner, in the flags' units; the defaults are
 // PlannerOptions' own.
@@ -36,11 +33,15 @@ struct PlannerArgs {
   int alternatives = planner::PlannerOptions{}.max_alternatives;
 };
 
-// Registers the planner's flags on `command`, in `group`; they write into *args, which
-// must outlive the parse.
-void add_planner_flags(CLI::App& command, PlannerArgs* args, const char* group);
+// The planner's options read from `args`, with `threads` (0: one per core) and
+// `simulation`. Throws InputError when one is not usable, its field and message naming
+// the option by `names` (PlannerOptions' fields: {"max_time_s"}, {"noise", "scale"},
+// {"robust"}, {"robustness_samples"}, ...; planner_flag_names() for the flags).
+planner::PlannerOptions planner_options(const PlannerArgs& args, int threads,
+                                        const physics::SimulationOptions& simulation,
+                                        std::span<const FieldName> names);
 
-// Empty when the flags are usable: then *options holds them, `threads` (0: one per
+// The command line's form of planner_options: empty when the flags are usable: then *options holds them, `threads` (0: one per
 // core) and `simulation`. Otherwise one line naming the flag.
 std::string read_planner_options(const PlannerArgs& args, int threads,
                                  const physics::SimulationOptions& simulation,
@@ -54,4 +55,14 @@ std::span<const FieldName> planner_flag_names();
 // (standard deviations, --noise 1)".
 std::string noise_text(const planner::NoiseModel& noise);
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::PlannerArgs;
+using api::read_planner_options;
+using api::planner_options;
+using api::InputError;
+using api::planner_flag_names;
+using api::noise_text;
 }  // namespace cueplan::cli

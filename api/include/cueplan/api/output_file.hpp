@@ -7,7 +7,7 @@
 
 #include "cueplan/draw/picture.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 // Creates `dir` (and its parents) if missing. Empty when the directory exists
 // afterwards; otherwise one line saying why not.
@@ -32,4 +32,13 @@ std::string write_picture(const std::filesystem::path& path, const draw::Picture
 // a reader never sees a half-written file. Empty on success; otherwise one line.
 std::string write_file_atomically(const std::filesystem::path& path, std::string_view contents);
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::ensure_directory;
+using api::check_output_file;
+using api::check_picture_file;
+using api::write_picture;
+using api::write_file_atomically;
 }  // namespace cueplan::cli

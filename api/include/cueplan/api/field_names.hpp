@@ -13,7 +13,7 @@
 
 #include "cueplan/physics/validation.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 struct FieldName {
   physics::FieldPath field;
@@ -31,4 +31,12 @@ std::string message_in(const physics::ValidationError& error, std::span<const Fi
 // (physics::ImpactOptions) as `cueplan rebound` and `cueplan collide` set them.
 extern const std::initializer_list<FieldName> kCushionFlags;
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::FieldName;
+using api::name_of;
+using api::message_in;
+using api::kCushionFlags;
 }  // namespace cueplan::cli

@@ -6,7 +6,7 @@
 
 #include "cueplan/physics/impact_table.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 // Where tables are cached by default: $CUEPLAN_CACHE_DIR, else
 // $XDG_CACHE_HOME/cueplan, else $HOME/.cache/cueplan, else a temporary directory.
@@ -19,4 +19,10 @@ physics::ImpactTable load_or_build_table(const physics::CushionParams& params,
                                          const physics::ImpactTableOptions& options,
                                          const std::string& cache_dir, std::string* note = nullptr);
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::default_table_cache_dir;
+using api::load_or_build_table;
 }  // namespace cueplan::cli

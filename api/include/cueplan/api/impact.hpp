@@ -3,16 +3,15 @@
 #pragma once
 
 #include <iosfwd>
+#include <span>
 #include <string>
 
 #include "cueplan/physics/impact_table.hpp"
 #include "cueplan/physics/shot.hpp"
+#include "cueplan/api/errors.hpp"
+#include "cueplan/api/field_names.hpp"
 
-namespace CLI {
-class App;
-}
-
-namespace cueplan::cli {
+namespace cueplan::api {
 
 // The impact method of the commands that simulate one shot or a batch (rebound,
 // simulate): the library's own default, exact.
@@ -29,11 +28,13 @@ struct ImpactArgs {
   std::string table_cache;  // empty: default_table_cache_dir() (table_cache.hpp)
 };
 
-// Registers --method, --accuracy and --table-cache on `command`, in `group`; the flags
-// write into *args, which must outlive the parse.
-void add_impact_flags(CLI::App& command, ImpactArgs* args, const char* group);
+// The impact method and accuracy of `args` set on *options. Throws InputError when one
+// is not usable, naming it by `names` ({"simulation", "impact_method"},
+// {"simulation", "impact_accuracy"}).
+void impact_options(const ImpactArgs& args, std::span<const FieldName> names,
+                    physics::SimulationOptions* options);
 
-// Empty when the flags are usable (then *options has the method and accuracy);
+// The command line's form: empty when the flags are usable (then *options has the method and accuracy);
 // otherwise one line naming the flag.
 std::string read_impact_options(const ImpactArgs& args, physics::SimulationOptions* options);
 
@@ -55,4 +56,15 @@ int prepare_impact_table(const char* command, const physics::Scene& scene,
 std::string use_impact_table(const physics::ImpactTable& table, const physics::Scene& scene,
                              bool accuracy_given, physics::SimulationOptions* options);
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::kShotImpactMethod;
+using api::kSearchImpactMethod;
+using api::ImpactArgs;
+using api::read_impact_options;
+using api::impact_options;
+using api::prepare_impact_table;
+using api::use_impact_table;
 }  // namespace cueplan::cli

@@ -1,4 +1,4 @@
-#include "shot_report.hpp"
+#include "cueplan/api/shot_report.hpp"
 
 #include <fmt/format.h>
 
@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
-#include "shot_words.hpp"
+#include "cueplan/api/words.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 namespace phys = cueplan::physics;
 namespace plan = cueplan::planner;
@@ -289,4 +289,4 @@ ordered_json planned_json(const prob::Problem& problem, const plan::PlannedShot&
   return j;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api

@@ -1,4 +1,4 @@
-#include "output_file.hpp"
+#include "cueplan/api/output_file.hpp"
 
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <system_error>
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 std::string ensure_directory(const std::filesystem::path& dir) {
   std::error_code ec;
@@ -74,4 +74,4 @@ std::string write_file_atomically(const std::filesystem::path& path, std::string
   return {};
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api

@@ -1,6 +1,6 @@
-#include "field_names.hpp"
+#include "cueplan/api/field_names.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 const std::initializer_list<FieldName> kCushionFlags = {
     {{"mass"}, "--mass"},
@@ -28,4 +28,4 @@ std::string message_in(const physics::ValidationError& error, std::span<const Fi
                        error.other ? name_of(*error.other, names) : std::string());
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api

@@ -1,11 +1,11 @@
-#include "table_cache.hpp"
+#include "cueplan/api/table_cache.hpp"
 
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <system_error>
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 std::string default_table_cache_dir() {
   auto set = [](const char* name) -> const char* {
@@ -55,4 +55,4 @@ physics::ImpactTable load_or_build_table(const physics::CushionParams& params,
   return t;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api

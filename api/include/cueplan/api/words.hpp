@@ -10,7 +10,7 @@
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/problems/problem.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 // A number as reports print it (6 significant digits), with its unit when given:
 // "0.847614 m/s".
@@ -46,4 +46,17 @@ std::string route_text(const physics::Scene& scene, const std::vector<int>& rout
 // "exact (impact accuracy 1e-09 of the speed)".
 std::string method_text(const physics::SimulationOptions& options, const physics::Scene& scene);
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::number;
+using api::report_line;
+using api::tip_offset_words;
+using api::squirt_deg;
+using api::squirt_words;
+using api::cushions_allowed;
+using api::cushion_name;
+using api::route_text;
+using api::method_text;
 }  // namespace cueplan::cli

@@ -4,7 +4,7 @@
 #include <ostream>
 #include <string_view>
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 enum ExitCode : int {
   kExitOk = 0,      // done; a result flagged only (e.g. above the rigid limit) is still ok
@@ -18,4 +18,13 @@ inline int usage_error(std::ostream& err, std::string_view command, std::string_
   return kExitUsage;
 }
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::ExitCode;
+using api::kExitOk;
+using api::kExitFailed;
+using api::kExitUsage;
+using api::usage_error;
 }  // namespace cueplan::cli

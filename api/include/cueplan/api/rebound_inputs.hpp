@@ -7,7 +7,7 @@
 #include "cueplan/physics/cushion_impact.hpp"
 #include "cueplan/physics/impact_table.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 // How the caller spells the inputs in its messages (flags or CSV columns).
 struct IncidenceNames {
@@ -40,4 +40,15 @@ std::optional<physics::ImpactTable> acquire_table(const physics::CushionParams& 
                                                   const std::string& cache_dir, int threads,
                                                   std::string* note, std::string* error);
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::IncidenceNames;
+using api::kFlagNames;
+using api::kColumnNames;
+using api::check_incidence;
+using api::check_params;
+using api::check_options;
+using api::acquire_table;
 }  // namespace cueplan::cli

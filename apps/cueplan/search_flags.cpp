@@ -1,38 +1,37 @@
-#include "planner_flags.hpp"
-#include "field_names.hpp"
-#include "shot_words.hpp"
+#include "search_flags.hpp"
 
 #include <CLI/CLI.hpp>
 
-#include "cueplan/physics/parallel.hpp"
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <utility>
+#include "cueplan/api/words.hpp"
 
 namespace cueplan::cli {
-namespace {
 
-namespace plan = cueplan::planner;
-
-// PlannerOptions' fields and the flags that set them.
-const std::initializer_list<FieldName> kPlannerFlags = {
-    {{"max_evaluations"}, "--max-evaluations"},
-    {{"max_time_s"}, "--max-time"},
-    {{"local_starts"}, "--starts"},
-    {{"threads"}, "--threads"},
-    {{"noise", "scale"}, "--noise"},
-    {{"noise", "tip_offset_relative"}, "--tip-offset-relative"},
-    {{"noise", "squirt_judgement"}, "--squirt-judgement"},
-    {{"noise", "bridge_length"}, "--bridge-length"},
-    {{"robustness_samples"}, "--samples"},
-    {{"max_alternatives"}, "--alternatives"},
-    {{"simulation", "impact_accuracy"}, "--accuracy"},
-    {{"global"}, "--global"},
-    {{"local"}, "--local"},
-};
-
-}  // namespace
+void add_impact_flags(CLI::App& command, ImpactArgs* args, const char* group) {
+  command
+      .add_option("--method", args->method,
+                  "Cushion impacts: table (precomputed surrogate, the fast path for the "
+                  "thousands of shots a search needs; built once, about 30 s on 2 cores, then "
+                  "loaded from the cache), exact (Taylor-series integrator with stick/slip "
+                  "events), extrapolation (a second exact method, Gragg-Bulirsch-Stoer "
+                  "extrapolation) or paper (the paper's fixed-step scheme)")
+      ->type_name("table|exact|extrapolation|paper")
+      ->capture_default_str()
+      ->group(group);
+  command
+      .add_option("--accuracy", args->accuracy,
+                  "Relative error wanted from each cushion impact, in [1e-12, 0.1]. table: the "
+                  "table answers only where its measured error is within it (else exact does); "
+                  "without this flag it is the table's measured error. exact, extrapolation: "
+                  "their tolerance follows it. Default 1e-09 (exact)")
+      ->type_name("REL")
+      ->group(group);
+  command
+      .add_option("--table-cache", args->table_cache,
+                  "table: directory for the cached table (default: $CUEPLAN_CACHE_DIR, else "
+                  "$XDG_CACHE_HOME/cueplan, else ~/.cache/cueplan)")
+      ->type_name("DIR")
+      ->group(group);
+}
 
 void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
   c.add_option("--global", args->global,
@@ -118,62 +117,6 @@ void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
       ->type_name("N")
       ->capture_default_str()
       ->group(group);
-}
-
-std::string read_planner_options(const PlannerArgs& args, int threads,
-                                 const physics::SimulationOptions& simulation,
-                                 plan::PlannerOptions* options) {
-  if (!plan::parse_global_method(args.global, &options->global))
-    return "--global must be one of direct_l, crs2, mlsl, isres, ompl_kpiece1, got '" + args.global + "'";
-  if (!plan::parse_local_method(args.local, &options->local))
-    return "--local must be one of bobyqa, sbplx, cobyla, neldermead, got '" + args.local + "'";
-  if (args.max_evaluations < 1)
-    return "--max-evaluations must be a positive number of shot simulations, got " +
-           std::to_string(args.max_evaluations);
-  if (!std::isfinite(args.max_time_s) || !(args.max_time_s > 0.0))
-    return "--max-time must be positive and finite (s), got " + number(args.max_time_s);
-  if (args.starts < 1) return "--starts must be at least 1, got " + std::to_string(args.starts);
-  // Ten times a club player's scatter already sends strokes past what a cue can give.
-  if (!std::isfinite(args.noise) || args.noise < 0.0 || args.noise > 10.0)
-    return "--noise must be 0 to 10 (times a club player's scatter), got " + number(args.noise);
-  if (args.samples < 0)
-    return "--samples must not be negative, got " + std::to_string(args.samples);
-  if (args.robust && args.samples < 1)
-    return "--samples must be at least 1 with --robust, got " + std::to_string(args.samples);
-  if (args.alternatives < 0)
-    return "--alternatives must not be negative, got " + std::to_string(args.alternatives);
-  if (threads < 0)
-    return "--threads must be 0 (one per core) or more, got " + std::to_string(threads);
-
-  options->max_evaluations = args.max_evaluations;
-  options->max_time_s = args.max_time_s;
-  options->local_starts = args.starts;
-  options->seed = args.seed;
-  options->threads = static_cast<int>(physics::thread_count(threads));
-  options->noise.scale = args.noise;
-  options->noise.tip_offset_relative = args.tip_offset_relative;
-  options->noise.squirt_judgement = args.squirt_judgement;
-  options->noise.bridge_length = args.bridge_length;
-  options->robust = args.robust;
-  options->robustness_samples = args.samples;
-  options->enforce_rigid_limit = args.enforce_rigid_limit;
-  options->max_alternatives = args.alternatives;
-  options->simulation = simulation;
-  const physics::Validation e = options->validate();
-  return e ? message_in(*e, kPlannerFlags) : std::string();
-}
-
-std::span<const FieldName> planner_flag_names() { return kPlannerFlags; }
-
-std::string noise_text(const plan::NoiseModel& noise) {
-  return "aim " + number(noise.aim_deg * noise.scale) + " deg, speed " +
-         number(noise.speed * noise.scale) + " m/s, tip offset " +
-         number(1000.0 * noise.tip_offset * noise.scale) + " mm + " +
-         number(100.0 * noise.tip_offset_relative * noise.scale) + " % of the offset, squirt " +
-         number(100.0 * noise.squirt_judgement * noise.scale) +
-         " % misjudged, cue pivoting " + number(1000.0 * noise.bridge_length) +
-         " mm behind the tip (standard deviations; --noise " +
-         number(noise.scale) + ")";
 }
 
 }  // namespace cueplan::cli

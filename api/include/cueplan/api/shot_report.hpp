@@ -12,7 +12,7 @@
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 
 // One constraint of the problem and whether the stroke meets it.
 struct ConstraintRow {
@@ -64,4 +64,21 @@ nlohmann::ordered_json next_json(const planner::NextReport& next);
 nlohmann::ordered_json planned_json(const problems::Problem& problem,
                                     const planner::PlannedShot& p, bool enforce_rigid_limit);
 
+}  // namespace cueplan::api
+
+// The faces (command line, server, batch) name these as their own.
+namespace cueplan::cli {
+using api::ConstraintRow;
+using api::constraints;
+using api::landing_text;
+using api::point_json;
+using api::estimate_text;
+using api::estimate_json;
+using api::success_json;
+using api::pot_success_words;
+using api::pot_lines;
+using api::pot_json;
+using api::next_lines;
+using api::next_json;
+using api::planned_json;
 }  // namespace cueplan::cli

@@ -1,4 +1,4 @@
-#include "rebound_inputs.hpp"
+#include "cueplan/api/rebound_inputs.hpp"
 
 #include <fmt/format.h>
 
@@ -6,10 +6,10 @@
 #include <exception>
 #include <utility>
 
-#include "field_names.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/field_names.hpp"
+#include "cueplan/api/table_cache.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 namespace {
 
 std::string describe(const char* name, const char* rule, double value) {
@@ -64,4 +64,4 @@ std::optional<physics::ImpactTable> acquire_table(const physics::CushionParams& 
   }
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api

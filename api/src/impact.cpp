@@ -1,6 +1,5 @@
-#include "impact_setup.hpp"
+#include "cueplan/api/impact.hpp"
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,53 +7,44 @@
 #include <optional>
 #include <ostream>
 
-#include "exit_codes.hpp"
-#include "output_file.hpp"
-#include "rebound_inputs.hpp"
-#include "shot_words.hpp"
-#include "table_cache.hpp"
+#include "cueplan/api/exit_codes.hpp"
+#include "cueplan/api/field_names.hpp"
+#include "cueplan/api/output_file.hpp"
+#include "cueplan/api/rebound_inputs.hpp"
+#include "cueplan/api/words.hpp"
+#include "cueplan/api/table_cache.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::api {
 namespace {
 
 namespace phys = cueplan::physics;
 
 }  // namespace
 
-void add_impact_flags(CLI::App& command, ImpactArgs* args, const char* group) {
-  command
-      .add_option("--method", args->method,
-                  "Cushion impacts: table (precomputed surrogate, the fast path for the "
-                  "thousands of shots a search needs; built once, about 30 s on 2 cores, then "
-                  "loaded from the cache), exact (Taylor-series integrator with stick/slip "
-                  "events), extrapolation (a second exact method, Gragg-Bulirsch-Stoer "
-                  "extrapolation) or paper (the paper's fixed-step scheme)")
-      ->type_name("table|exact|extrapolation|paper")
-      ->capture_default_str()
-      ->group(group);
-  command
-      .add_option("--accuracy", args->accuracy,
-                  "Relative error wanted from each cushion impact, in [1e-12, 0.1]. table: the "
-                  "table answers only where its measured error is within it (else exact does); "
-                  "without this flag it is the table's measured error. exact, extrapolation: "
-                  "their tolerance follows it. Default 1e-09 (exact)")
-      ->type_name("REL")
-      ->group(group);
-  command
-      .add_option("--table-cache", args->table_cache,
-                  "table: directory for the cached table (default: $CUEPLAN_CACHE_DIR, else "
-                  "$XDG_CACHE_HOME/cueplan, else ~/.cache/cueplan)")
-      ->type_name("DIR")
-      ->group(group);
+void impact_options(const ImpactArgs& args, std::span<const FieldName> names,
+                    phys::SimulationOptions* options) {
+  if (!phys::parse_method(args.method, &options->impact_method)) {
+    const std::string name = name_of({"simulation", "impact_method"}, names);
+    throw InputError(name, name + " must be one of table, exact, extrapolation, paper, got '" +
+                               args.method + "'");
+  }
+  if (!std::isfinite(args.accuracy) || !(args.accuracy >= 1e-12) || !(args.accuracy <= 0.1)) {
+    const std::string name = name_of({"simulation", "impact_accuracy"}, names);
+    throw InputError(name, name + " must lie in [1e-12, 0.1], got " + number(args.accuracy));
+  }
+  options->impact_accuracy = args.accuracy;
 }
 
 std::string read_impact_options(const ImpactArgs& args, phys::SimulationOptions* options) {
-  if (!phys::parse_method(args.method, &options->impact_method))
-    return "--method must be one of table, exact, extrapolation, paper, got '" + args.method +
-           "'";
-  if (!std::isfinite(args.accuracy) || !(args.accuracy >= 1e-12) || !(args.accuracy <= 0.1))
-    return "--accuracy must lie in [1e-12, 0.1], got " + number(args.accuracy);
-  options->impact_accuracy = args.accuracy;
+  static const std::initializer_list<FieldName> kFlags = {
+      {{"simulation", "impact_method"}, "--method"},
+      {{"simulation", "impact_accuracy"}, "--accuracy"},
+  };
+  try {
+    impact_options(args, kFlags, options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
   return {};
 }
 
@@ -110,4 +100,4 @@ std::string use_impact_table(const phys::ImpactTable& table, const phys::Scene& 
   return {};
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::api
