@@ -16,6 +16,16 @@
 //   better     the landing's field value is above 80 % of the landings of the strokes that
 //              pot the red the same way (the best stroke's aim, speeds 0.5-4.5 m/s and
 //              topspins -1.2..1.2 on a grid, no side): the positions the same pot reaches.
+//
+// Options for looking into the misses (the measure stays the same):
+//   --scan            per layout, strokes of speed 0.5-4.5 m/s, topspin -1.2..1.2 and side
+//                     -1..1 on a grid, the aim solved for each (the planner's pot aim), are
+//                     played exactly as searched: the best field value any potting stroke
+//                     leaves (an upper bound of what direct position play can reach), and
+//                     the best P(both) (estimate_success, 100 strokes) of the 12 best;
+//   --evaluations N, --starts K, --robust N
+//                     the planner's max_evaluations, local_starts, and its robust polish
+//                     with robust_max_evaluations N.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -32,6 +42,8 @@
 #include "cueplan/problems/problem.hpp"
 #include "plan_stats.hpp"
 #include "cueplan/api/table_cache.hpp"
+#include "pot_aim.hpp"
+#include "task.hpp"
 
 namespace {
 
@@ -85,11 +97,17 @@ bool make_position_play(problems::Problem* p, std::mt19937_64& rng, const planne
 int main(int argc, char** argv) {
   int layouts = 30;
   uint64_t seed = 1;
+  bool scan = false;
+  int evaluations = 0, starts = 0, robust = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
     if (a == "--layouts") layouts = std::atoi(next().c_str());
     else if (a == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
+    else if (a == "--scan") scan = true;
+    else if (a == "--evaluations") evaluations = std::atoi(next().c_str());
+    else if (a == "--starts") starts = std::atoi(next().c_str());
+    else if (a == "--robust") robust = std::atoi(next().c_str());
     else {
       fmt::print(stderr, "bench_position: unknown argument {}\n", a);
       return 2;
@@ -110,10 +128,14 @@ int main(int argc, char** argv) {
   options.simulation = sim;
   options.simulation.record_path = false;
   options.threads = 1;
+  if (evaluations > 0) options.max_evaluations = evaluations;
+  if (starts > 0) options.local_starts = starts;
+  if (robust > 0) options.robust = true, options.robust_max_evaluations = robust;
   std::mt19937_64 rng(seed);
 
   std::vector<double> field_ms, plan_ms, plan_cpu_ms, next_p, reported;
   int count = 0, solved = 0, pots = 0, next_ok = 0, agrees = 0, better = 0, in_zone = 0;
+  int scan_reach = 0;  // --scan: layouts where some potting stroke lands where the field is >= 0.6
   for (planner::KnownShotProblem& k : planner::known_pot_problems(layouts, seed, sim)) {
     problems::Problem p = k.problem;
     if (!make_position_play(&p, rng, options.noise)) continue;
@@ -180,6 +202,33 @@ int main(int argc, char** argv) {
         best_reached = std::max(best_reached, field.value(o.final_position));
       }
     better += reached > 0 && below >= 0.8 * reached;
+    if (scan) {
+      const planner::detail::Task task(p);
+      struct Cand { double nominal; physics::Shot shot; };
+      std::vector<Cand> cands;
+      for (double v = 0.5; v <= 4.5 + 1e-9; v += 0.25)
+        for (double kt = -1.2; kt <= 1.2 + 1e-9; kt += 0.2)
+          for (double ks = -1.0; ks <= 1.0 + 1e-9; ks += 0.5) {
+            if (std::hypot(kt, ks) > p.limits.spin_max) continue;
+            physics::Shot s = b.shot;
+            s.speed = v; s.topspin_k = kt; s.sidespin_k = ks;
+            const auto aimed = task.pot_aim->aim(task, s, options.simulation);
+            if (!aimed.found || !problems::check_outcome(p, aimed.result).pot_made()) continue;
+            cands.push_back({field.value(aimed.result.final_position), aimed.shot});
+          }
+      std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) { return x.nominal > y.nominal; });
+      double best_obj = 0.0, best_nom = cands.empty() ? 0.0 : cands.front().nominal;
+      physics::Shot best_shot;
+      for (size_t c = 0; c < std::min<size_t>(cands.size(), 12); ++c) {
+        const planner::Success su = planner::estimate_success(p, cands[c].shot, options.noise, 100, 7, options.simulation);
+        const double obj = su.both.p;
+        if (obj > best_obj) best_obj = obj, best_shot = cands[c].shot;
+      }
+      const planner::Success mine = planner::estimate_success(p, b.shot, options.noise, 100, 7, options.simulation);
+      scan_reach += best_nom >= 0.6;
+      fmt::print(stderr, "  SCAN {}: potting strokes {}, best nominal value {:.2f}, best both {:.2f} ({}); planner's both {:.2f} nominal {:.2f}\n",
+                 p.name, cands.size(), best_nom, best_obj, describe_stroke(best_shot), mine.both.p, landing_value);
+    }
     fmt::print(stderr, "{}: field {:.1f} ms, plan {:.0f} ms; next reported {:.2f}, solved from the "
                        "landing {:.2f}; landing above {}/{} reached positions (best reached {:.2f}, field best {:.2f}, "
                        "landing {:.2f}: {}; {}; pocket {})\n",
@@ -202,5 +251,8 @@ int main(int argc, char** argv) {
   fmt::print("landing above 80 % of the positions the same pot reaches: {}/{} ({:.0f} %)\n", better,
              solved, pct(better));
   fmt::print("landing inside the zone: {}/{} ({:.0f} %)\n", in_zone, solved, pct(in_zone));
+  if (scan)
+    fmt::print("scan: some potting stroke lands where the field is >= 0.6: {}/{} ({:.0f} %)\n", scan_reach,
+               solved, pct(scan_reach));
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 
 #include "cueplan/planner/position.hpp"
@@ -88,20 +89,33 @@ namespace {
 
 // The position fields of single pots (PositionField, no grid), kept per layout of the
 // balls: the noisy strokes of one decision leave the same balls again and again, and
-// the look-ahead asks each layout's pots from several places. A layout's fields are
-// built together when it is first met and never change after: reading them takes no
-// lock. Thread-safe; owned by the PositionValue that uses it.
+// the look-ahead asks each layout's pots from several places. A layout's field of a pot
+// is built at the first question about that pot (under its std::call_once) and never
+// changes after: reading it takes no lock. Thread-safe; owned by the PositionValue that
+// uses it.
 class PotFields {
  public:
-  // Every pot of one layout: fields[ball index x pockets + pocket], the balls as given.
+  // Every pot of one layout: slot ball index x pockets + pocket, the balls as given.
   struct Layout {
+    struct Slot {
+      std::once_flag once;
+      std::optional<PositionField> field;
+    };
     std::vector<physics::ObjectBall> balls;
-    size_t pockets = 0;
-    std::vector<PositionField> fields;
+    const PotFields* owner = nullptr;
+    std::unique_ptr<Slot[]> slots;
 
     // P(pot balls[index] into `pocket`) from `cue`.
     double chance(size_t index, int pocket, Vec2 cue) const {
-      return fields[index * pockets + static_cast<size_t>(pocket)].next_shot(cue).p;
+      const size_t pockets = owner->scene_.pockets.size();
+      Slot& slot = slots[index * pockets + static_cast<size_t>(pocket)];
+      std::call_once(slot.once, [&] {
+        physics::Scene s = owner->scene_;
+        s.balls = balls;
+        slot.field.emplace(s, std::vector<problems::NextPot>{{balls[index].name, pocket}}, owner->noise_, 0.02,
+                           FieldGrid::lazy);
+      });
+      return slot.field->next_shot(cue).p;
     }
     // The index of `ball`, or balls.size() without it.
     size_t index_of(const std::string& ball) const {
@@ -121,17 +135,10 @@ class PotFields {
       const std::lock_guard<std::mutex> lock(mutex_);
       if (const Layout* l = find(h, balls)) return *l;
     }
-    // Built outside the lock; two threads may build the same one (the first kept wins).
     auto built = std::make_unique<Layout>();
     built->balls = balls;
-    built->pockets = scene_.pockets.size();
-    physics::Scene s = scene_;
-    s.balls = balls;
-    built->fields.reserve(balls.size() * built->pockets);
-    for (const physics::ObjectBall& b : balls)
-      for (size_t k = 0; k < built->pockets; ++k)
-        built->fields.emplace_back(s, std::vector<problems::NextPot>{{b.name, static_cast<int>(k)}}, noise_,
-                                   0.02, FieldGrid::lazy);
+    built->owner = this;
+    built->slots = std::make_unique<Layout::Slot[]>(balls.size() * scene_.pockets.size());
     const std::lock_guard<std::mutex> lock(mutex_);
     if (const Layout* l = find(h, balls)) return *l;
     layouts_[h].push_back(std::move(built));
