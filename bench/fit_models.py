@@ -5,7 +5,8 @@
 
 Runs `cueplan fit --json` once per physics file (docs/fit/carom_calibrated.yaml: Mathavan
 2010 with the calibrated carom constants; docs/fit/carom_han_2005.yaml: the same constants
-with the Han 2005 cushion) and prints each model's cue-ball RMSE distribution and how many
+with the Han 2005 cushion; docs/fit/carom_stronge.yaml: with the stronge_compliant
+cushion) and prints each model's cue-ball RMSE distribution and how many
 shots each fits better. Works with any python3 (standard library only).
 """
 import json
@@ -18,6 +19,7 @@ ROOT = Path(__file__).resolve().parent.parent
 MODELS = {
     "mathavan_2010": ROOT / "docs/fit/carom_calibrated.yaml",
     "han_2005": ROOT / "docs/fit/carom_han_2005.yaml",
+    "stronge_compliant": ROOT / "docs/fit/carom_stronge.yaml",
 }
 
 
@@ -37,14 +39,19 @@ def main():
         p90 = v[max(0, int(round(0.9 * len(v))) - 1)]
         print(f"{name:14s} shots {len(v)}  median {statistics.median(v):.2f} cm  "
               f"90th percentile {p90:.2f} cm  mean {statistics.mean(v):.2f} cm")
-    a, b = rmse["mathavan_2010"], rmse["han_2005"]
-    ids = sorted(set(a) & set(b))
-    print(f"han_2005 closer by more than 0.5 cm on {sum(b[i] < a[i] - 0.5 for i in ids)} shots, "
-          f"mathavan_2010 on {sum(a[i] < b[i] - 0.5 for i in ids)}, within 0.5 cm on the rest "
-          f"(of {len(ids)})")
-    print("shot  mathavan_2010  han_2005 (cm)")
+    a = rmse["mathavan_2010"]
+    for other in ("han_2005", "stronge_compliant"):
+        b = rmse[other]
+        ids = sorted(set(a) & set(b))
+        print(f"{other} closer than mathavan_2010 by more than 0.5 cm on "
+              f"{sum(b[i] < a[i] - 0.5 for i in ids)} shots, mathavan_2010 on "
+              f"{sum(a[i] < b[i] - 0.5 for i in ids)}, within 0.5 cm on the rest (of {len(ids)})")
+    c = rmse["han_2005"]
+    s = rmse["stronge_compliant"]
+    ids = sorted(set(a) & set(c) & set(s))
+    print("shot  mathavan_2010  han_2005  stronge_compliant (cm)")
     for i in ids:
-        print(f"{i:4d}  {a[i]:13.2f}  {b[i]:8.2f}")
+        print(f"{i:4d}  {a[i]:13.2f}  {c[i]:8.2f}  {s[i]:17.2f}")
 
 
 if __name__ == "__main__":

@@ -65,6 +65,7 @@ ordered_json shot_json(const plan::StrokeFit& f) {
           {"aim_deg", f.shot.aim_deg},
           {"topspin_k", f.shot.topspin_k},
           {"sidespin_k", f.shot.sidespin_k},
+          {"elevation_deg", f.shot.elevation_deg},
           {"strike_offset_s", f.offset_s},
           {"words", tip_offset_words(f.shot)}};
 }
@@ -120,7 +121,7 @@ std::string carom_table(const std::string& physics_file, phys::Scene* scene) {
 }
 
 ordered_json physics_json(const phys::Scene& s) {
-  return {{"mu_slide", s.cloth.mu_slide},
+  ordered_json j = {{"mu_slide", s.cloth.mu_slide},
           {"mu_roll", s.cloth.mu_roll},
           {"mu_spin", s.cloth.mu_spin},
           {"mu_cushion", s.ball_and_cushion.mu_cushion},
@@ -132,6 +133,10 @@ ordered_json physics_json(const phys::Scene& s) {
           {"ball_restitution", s.ball_contact.restitution},
           {"ball_model", phys::to_string(s.ball_contact.model)},
           {"ball_friction", phys::to_string(s.ball_contact.friction)}};
+  // The compliant cushion's own parameter, where it is the model.
+  if (s.ball_and_cushion.model == phys::CushionModel::stronge_compliant)
+    j["eta_squared"] = s.ball_and_cushion.eta_squared;
+  return j;
 }
 
 std::vector<plan::ShotData> read_tracks(const std::string& path, const phys::Scene& table,

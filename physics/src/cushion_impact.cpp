@@ -60,13 +60,19 @@ Validation CushionParams::validate() const {
     return invalid({"rigid_speed_limit"}, "must be positive and finite (m/s)", rigid_speed_limit);
   const double s = sin_theta();
   const double c = cos_theta();
-  if (model == CushionModel::han_2005) {
+  if (model == CushionModel::stronge_compliant &&
+      !(std::isfinite(eta_squared) && eta_squared > 0.875 && eta_squared < 3.5))
+    return invalid({"eta_squared"},
+                   "must lie in (0.875, 3.5) for cushion_model stronge_compliant: the tangential "
+                   "spring must vibrate between 1 and 2 times as fast as the normal one",
+                   eta_squared);
+  if (model == CushionModel::han_2005 || model == CushionModel::stronge_compliant) {
     // The worst friction (mu P_zE pressing the ball down along the tangent) must still
     // turn the centre round: vy' / vy = 1 - (1 + e) c (c - mu s) < 0.
     if (!((1.0 + restitution) * c * (c - mu_cushion * s) > 1.0)) {
       ValidationError e = invalid({"restitution"},
                                   "is too small together with {other} for cushion_model "
-                                  "han_2005: (1 + restitution) cos(theta) (cos(theta) - "
+                                  "han_2005 or stronge_compliant: (1 + restitution) cos(theta) (cos(theta) - "
                                   "mu_cushion sin(theta)) must exceed 1, or a ball may leave "
                                   "the cushion still moving into it",
                                   restitution);
@@ -76,7 +82,8 @@ Validation CushionParams::validate() const {
     return {};
   }
   if (model != CushionModel::mathavan_2010)
-    return invalid({"model"}, "must be mathavan_2010 or han_2005", static_cast<int>(model));
+    return invalid({"model"}, "must be mathavan_2010, han_2005 or stronge_compliant",
+                   static_cast<int>(model));
   // The table must keep pushing up: p_C = s - c fIy' > 0 for any |fIy'| <= mu_w.
   if (!(mu_cushion < s / c))
     return invalid({"mu_cushion"},
@@ -137,12 +144,14 @@ const char* to_string(CushionModel model) {
   switch (model) {
     case CushionModel::mathavan_2010: return "mathavan_2010";
     case CushionModel::han_2005: return "han_2005";
+    case CushionModel::stronge_compliant: return "stronge_compliant";
   }
   return "unknown";
 }
 
 bool parse_cushion_model(const std::string& name, CushionModel* model) {
-  for (CushionModel m : {CushionModel::mathavan_2010, CushionModel::han_2005}) {
+  for (CushionModel m : {CushionModel::mathavan_2010, CushionModel::han_2005,
+                         CushionModel::stronge_compliant}) {
     if (name == to_string(m)) {
       *model = m;
       return true;
@@ -277,7 +286,8 @@ Validation detail::check_impact_inputs(const CushionParams& params, const Impact
   if (Validation e = params.validate()) return e;
   if (Validation e = options.validate()) return e;
   // The methods are Mathavan's; the han_2005 model is one closed form whatever they say.
-  if (params.model == CushionModel::han_2005) return {};
+  if (params.model == CushionModel::han_2005 || params.model == CushionModel::stronge_compliant)
+    return {};
   if (options.method == ImpactMethod::closed_form)
     return invalid({"method"},
                    "closed_form resolves the han_2005 cushion model only; mathavan_2010 takes "
@@ -317,6 +327,8 @@ std::optional<ImpactResult> prepare(const CushionParams& params, const BallState
                                     const ImpactOptions& options, Prepared* prep) {
   if (Validation e = validate_state(incoming)) return invalid_result(std::move(*e));
   if (params.model == CushionModel::han_2005) return detail::resolve_han_2005(params, incoming);
+  if (params.model == CushionModel::stronge_compliant)
+    return detail::resolve_stronge_compliant(params, incoming);
   if (options.method == ImpactMethod::table) {
     ImpactResult r;
     if (options.table->resolve(params, incoming, &r)) return r;

@@ -76,6 +76,11 @@ ImpactResult resolve_checked_impact(const CushionParams& params, const BallState
 // (velocity.y > 0): one closed-form impulse, flagged above the rigid-speed limit.
 ImpactResult resolve_han_2005(const CushionParams& params, const BallState& incoming);
 
+// The stronge_compliant model (impact_stronge.cpp), likewise: the contact's springs
+// integrated in kStrongeSteps steps of its time.
+inline constexpr int kStrongeSteps = 160;
+ImpactResult resolve_stronge_compliant(const CushionParams& params, const BallState& incoming);
+
 // Fills a trace sample (scaled) from a state and the work so far.
 TraceSample scaled_sample(const Geometry& g, const Scaled& q, double impulse, double work);
 

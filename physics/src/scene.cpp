@@ -437,7 +437,9 @@ const char* to_string(ShotStatus status) {
 }
 
 ImpactMethod chosen_impact_method(const Scene& scene, const SimulationOptions& options) {
-  if (scene.ball_and_cushion.model == CushionModel::han_2005) return ImpactMethod::closed_form;
+  if (scene.ball_and_cushion.model == CushionModel::han_2005 ||
+      scene.ball_and_cushion.model == CushionModel::stronge_compliant)
+    return ImpactMethod::closed_form;
   if (options.impact_method == ImpactMethod::paper) return ImpactMethod::paper;
   if (options.impact_method == ImpactMethod::extrapolation) return ImpactMethod::extrapolation;
   if (options.impact_method == ImpactMethod::table && options.table != nullptr &&

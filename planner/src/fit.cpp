@@ -96,19 +96,23 @@ phys::Shot stroke_of(const double* u, const phys::Shot& centre, const ShotData& 
   }
   s.aim_deg = centre.aim_deg + o.aim_span_deg * (2.0 * u[1] - 1.0) - squirt_deg(d, s.sidespin_k);
   *offset = d.strike_lo + window(d, o) * u[4];
-  // A stroke elevation (Shot::elevation_deg, when strokes have it) would be u[5].
+  // The cue's elevation (swerve with side), when the search has it.
+  if (o.max_elevation_deg > 0.0) s.elevation_deg = o.max_elevation_deg * u[5];
   return s;
 }
 
 std::vector<double> unit_of(const StrokeFit& f, const phys::Shot& centre, const ShotData& d,
                             const FitOptions& o) {
   auto clamp01 = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.5; };
-  return {clamp01(0.5 * (f.shot.speed / centre.speed - 1.0) / o.speed_span + 0.5),
-          clamp01(0.5 * (f.shot.aim_deg + squirt_deg(d, f.shot.sidespin_k) - centre.aim_deg) /
-                      o.aim_span_deg + 0.5),
-          clamp01(0.5 * f.shot.topspin_k / o.spin_max + 0.5),
-          clamp01(0.5 * f.shot.sidespin_k / o.spin_max + 0.5),
-          clamp01(window(d, o) > 0 ? (f.offset_s - d.strike_lo) / window(d, o) : 0.0)};
+  std::vector<double> u = {
+      clamp01(0.5 * (f.shot.speed / centre.speed - 1.0) / o.speed_span + 0.5),
+      clamp01(0.5 * (f.shot.aim_deg + squirt_deg(d, f.shot.sidespin_k) - centre.aim_deg) /
+                  o.aim_span_deg + 0.5),
+      clamp01(0.5 * f.shot.topspin_k / o.spin_max + 0.5),
+      clamp01(0.5 * f.shot.sidespin_k / o.spin_max + 0.5),
+      clamp01(window(d, o) > 0 ? (f.offset_s - d.strike_lo) / window(d, o) : 0.0)};
+  if (o.max_elevation_deg > 0.0) u.push_back(clamp01(f.shot.elevation_deg / o.max_elevation_deg));
+  return u;
 }
 
 }  // namespace
@@ -441,6 +445,12 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
     l.initial_step = step;
     detail::run_stage(l, &x, &objective);
   };
+  // The best on every sample of two candidates (each scored on all samples).
+  const auto better = [&](const StrokeFit& a, const StrokeFit& b) {
+    const StrokeFit fa = evaluate_stroke(scene, data, a.shot, a.offset_s, options);
+    const StrokeFit fb = evaluate_stroke(scene, data, b.shot, b.offset_s, options);
+    return fa.loss <= fb.loss ? fa : fb;
+  };
   objective.best = guess;
   if (!start) {
     // The same stroke gives the same answer on every run and thread.
@@ -468,7 +478,24 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
     x = unit_of(guess, guess.shot, data, options);
     detail::run_stage(g, &x, &objective);
     local(kInf, options.local_evaluations / 2, 0.02);
-    if (continued.loss < objective.best.loss) objective.best = continued;
+    StrokeFit best = better(continued, objective.best);
+    // Spin starts: speed, aim and strike pinned by the early samples, the spins (which
+    // rule the path after the first cushion or kiss) restarted from a ring of values,
+    // each continued over the later windows.
+    const int n = options.spin_starts;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / n;
+      StrokeFit from = best;
+      from.shot.topspin_k = options.spin_start_radius * std::cos(a);
+      from.shot.sidespin_k = options.spin_start_radius * std::sin(a);
+      from.shot.aim_deg = best.shot.aim_deg + squirt_deg(data, best.shot.sidespin_k) -
+                          squirt_deg(data, from.shot.sidespin_k);
+      objective.best = from;
+      for (double w : {windows[1], windows[2], kInf})
+        local(w, options.spin_start_evaluations, 0.02);
+      best = better(best, objective.best);
+    }
+    objective.best = best;
   }
   local(kInf, options.local_evaluations, start ? 0.01 : 0.005);
   evaluations += objective.evaluations;

@@ -218,7 +218,7 @@ void read_physics(const Mapping& root, FieldLines& lines, physics::Scene& scene)
   const Mapping m(*field,
                   {"mu_slide", "mu_roll", "mu_spin", "mu_cushion", "restitution", "cushion_height",
                    "gravity", "mu_ball", "ball_restitution", "ball_model", "ball_friction",
-                   "cushion_model"},
+                   "cushion_model", "eta_squared"},
                   lines);
   physics::CushionParams& cushion = scene.ball_and_cushion;
   physics::ClothParams& cloth = scene.cloth;
@@ -228,12 +228,11 @@ void read_physics(const Mapping& root, FieldLines& lines, physics::Scene& scene)
   if (auto f = m.find("mu_cushion")) cushion.mu_cushion = detail::non_negative_number(*f);
   if (auto f = m.find("restitution")) cushion.restitution = detail::positive_number(*f);
   if (auto f = m.find("cushion_height")) cushion.cushion_height = detail::positive_number(*f);
+  if (auto f = m.find("eta_squared")) cushion.eta_squared = detail::positive_number(*f);
   if (auto f = m.find("gravity")) cloth.gravity = detail::positive_number(*f);
   if (auto f = m.find("cushion_model")) {
-    // A Stronge-type compliant cushion is a known alternative, not one this version has.
-    if (detail::is_word(*f, "stronge_compliant"))
-      detail::fail(*f, "stronge_compliant is not implemented; choose mathavan_2010 or han_2005");
-    const std::string model = detail::one_of(*f, {"mathavan_2010", "han_2005"});
+    const std::string model =
+        detail::one_of(*f, {"mathavan_2010", "han_2005", "stronge_compliant"});
     physics::parse_cushion_model(model, &cushion.model);
   }
   // Between the balls (the collision library checks the rest of their rules).

@@ -360,6 +360,11 @@ TEST(ProblemValues, CushionModelReachesTheScene) {
   EXPECT_EQ(parse_ok("physics: {cushion_model: mathavan_2010}\ncue_ball: [1, 1]\ntarget: [2, 1]\n")
                 .scene.ball_and_cushion.model,
             physics::CushionModel::mathavan_2010);
+  const Problem stronge = parse_ok(
+      "physics: {cushion_model: stronge_compliant, eta_squared: 1.2}\n"
+      "cue_ball: [1, 1]\ntarget: [2, 1]\n");
+  EXPECT_EQ(stronge.scene.ball_and_cushion.model, physics::CushionModel::stronge_compliant);
+  EXPECT_DOUBLE_EQ(stronge.scene.ball_and_cushion.eta_squared, 1.2);
 }
 
 TEST(ProblemValues, ObjectBallsPotAndBallPhysicsReachTheirFields) {
@@ -790,13 +795,14 @@ const BadInput kBadInputs[] = {
      1, "physics.ball_model",
      "must be one of mathavan_2014, frictional_inelastic, got \"mathavan_2041\" (did you mean "
      "mathavan_2014?)"},
-    {"StrongeCushionNotImplemented",
-     "physics: {cushion_model: stronge_compliant}\ncue_ball: [1, 1]\ntarget: [2, 1]\n", 1,
-     "physics.cushion_model",
-     "stronge_compliant is not implemented; choose mathavan_2010 or han_2005"},
+    {"StrongeStiffnessRatioOutOfRange",
+     "physics: {cushion_model: stronge_compliant, eta_squared: 4}\ncue_ball: [1, 1]\n"
+     "target: [2, 1]\n",
+     1, "physics.eta_squared", "must lie in (0.875, 3.5) for cushion_model stronge_compliant"},
     {"UnknownCushionModel", "physics:\n  cushion_model: han_2006\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
      2, "physics.cushion_model",
-     "must be one of mathavan_2010, han_2005, got \"han_2006\" (did you mean han_2005?)"},
+     "must be one of mathavan_2010, han_2005, stronge_compliant, got \"han_2006\" (did you mean "
+     "han_2005?)"},
     {"HanRestitutionTooLow",
      "physics:\n  cushion_model: han_2005\n  restitution: 0.1\ncue_ball: [1, 1]\ntarget: [2, 1]\n",
      3, "physics.restitution", "is too small together with physics.mu_cushion for cushion_model han_2005"},

@@ -26,10 +26,12 @@ class ImpactTable;
 enum class CushionModel {
   mathavan_2010,  // friction at the cushion and the cloth over the normal impulse (default)
   han_2005,       // one impulse at the cushion contact, closed form, no cloth friction
+  stronge_compliant,  // normal and tangential springs at the cushion contact (Stronge),
+                      // no cloth friction; integrated over the contact's time
 };
 
 const char* to_string(CushionModel model);
-// Parses "mathavan_2010" or "han_2005"; returns false (leaving *model alone) otherwise.
+// Parses "mathavan_2010", "han_2005" or "stronge_compliant"; returns false (leaving *model alone) otherwise.
 bool parse_cushion_model(const std::string& name, CushionModel* model);
 
 // Fixed parameters of the impact. SI units; defaults are the paper's snooker values.
@@ -45,6 +47,12 @@ struct CushionParams {
   // mu_cushion (Han's mu) and restitution (Han's e, Newton's restitution of the normal
   // velocity at the contact); mu_table plays no part in its impact.
   CushionModel model = CushionModel::mathavan_2010;
+  // stronge_compliant only: eta^2, the normal contact stiffness over the tangential
+  // (Stronge's eta^2); with a sphere's effective masses the tangential spring vibrates
+  // sqrt(3.5 / eta^2) times as fast as the normal one, which Stronge's analysis takes
+  // between 1 and 2. Default 1.5: Mindlin's (2 - nu) / (2 (1 - nu)) for rubber, nu = 0.5.
+  // stronge_compliant uses the parameters as han_2005 does, and this.
+  double eta_squared = 1.5;
 
   // Elevation of the contact normal: sin(theta) = (h - R) / R.
   double sin_theta() const { return (cushion_height - radius) / radius; }
@@ -52,9 +60,10 @@ struct CushionParams {
 
   // Empty when usable; otherwise the first broken rule, fields named as the members here.
   // The rules on mu_cushion and mu_table that keep Mathavan's integration well posed
-  // apply to mathavan_2010; han_2005 instead needs
+  // apply to mathavan_2010; han_2005 and stronge_compliant instead need
   // (1 + restitution) cos(theta) (cos(theta) - mu_cushion sin(theta)) > 1, or a ball
-  // could leave its impulse still moving into the cushion.
+  // could leave its impulse still moving into the cushion; stronge_compliant also
+  // 0.875 < eta_squared < 3.5.
   Validation validate() const;
 };
 

@@ -89,8 +89,16 @@ struct FitOptions {
   double speed_span = 0.35;      // and first-guess speed x [1 - span, 1 + span]
   double spin_max = 1.25;        // |k_T|, |k_S| <= this
   int max_events = 400;
-  // Strokes have (speed, aim, topspin, sidespin) here; a stroke elevation, when
-  // physics::Shot gains one, joins the parameter vector in fit.cpp (stroke_of).
+  // Extra starts of the local stage with the spins reset to a ring of radius
+  // spin_start_radius round (0, 0), speed, aim and strike kept from the global stages;
+  // each runs spin_start_evaluations BOBYQA evaluations on each of three windows.
+  int spin_starts = 8;
+  double spin_start_radius = 0.7;
+  int spin_start_evaluations = 100;
+  // The cue's elevation (deg): > 0 adds it to the search, in [0, max_elevation_deg]
+  // (swerve: a stroke with side and elevation curves while it slides); 0 keeps the cue
+  // level.
+  double max_elevation_deg = 0.0;
 };
 
 // A stroke and the strike time, and how well they match the recorded shot.
