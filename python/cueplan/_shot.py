@@ -38,7 +38,10 @@ def as_stroke(stroke: StrokeLike) -> Stroke:
         return Stroke(**{k: float(v) for k, v in stroke.items()})
     values = [float(v) for v in stroke]
     if not 2 <= len(values) <= 5:
-        raise _core.InputError("stroke must be (speed, aim_deg[, topspin_k[, sidespin_k[, elevation_deg]]])")
+        error = _core.InputError("stroke must be (speed, aim_deg[, topspin_k[, sidespin_k[, elevation_deg]]]), "
+                                 f"got {len(values)} numbers")
+        error.field = "stroke"
+        raise error
     return Stroke(*values)
 
 

@@ -92,6 +92,8 @@ void bind_errors(py::module_& m) {
       "cue_ball, limits.speed[1]) or a stroke's (stroke.speed).",
       PyExc_ValueError, nullptr);
   m.attr("InputError") = py::reinterpret_borrow<py::object>(input_error_type);
+  // Raised from Python without one (InputError("...")), `field` reads None.
+  m.attr("InputError").attr("field") = py::none();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

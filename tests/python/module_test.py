@@ -183,6 +183,8 @@ class BadInputRaisesNamingTheField(unittest.TestCase):
         self.assert_field("cue_ball", cueplan.Problem, {"cue_ball": [0.5], "target": [1, 1]})
         self.assert_field("cue_ball", cueplan.Problem(ONE_RAIL).with_positions, cue_ball=(9.0, 0.5))
         self.assert_field("stroke.speed", cueplan.simulate, ONE_RAIL, (-1, 0))
+        self.assert_field("stroke", cueplan.simulate, ONE_RAIL, (1.0,))
+        self.assertIsNone(cueplan.InputError("raised from Python").field)
         self.assert_field("dt", cueplan.simulate(ONE_RAIL, (1, 0)).trajectory, 0)
         self.assert_field("max_time", cueplan.solve, ONE_RAIL, max_time=-1)
         self.assert_field("max_evaluations", cueplan.solve, ONE_RAIL, max_evaluations=0)
