@@ -5,7 +5,10 @@
 // and ball paths drawn exactly from the simulator's path segments.
 //
 // Balls are whatever the scene lists: the cue ball, `obstacles` and, when problems
-// carry them, `balls` ({name, position}) - each drawn and moved the same way.
+// carry them, `balls` ({name, position}) - each drawn and moved the same way, in the
+// look its name gives it (colours.js ballLook: pool's numbers, 9-15 striped). Over the
+// cloth, a position-play field may be shaded with its zone outlined (setField), and a
+// run's shots numbered where each starts (setPaths with `number`).
 
 import { BALL_COLOURS, ballLook, viridis } from "./colours.js";
 
@@ -220,10 +223,10 @@ export class TableView {
     this.balls.push({ kind: "target", index: 0, group: t });
     }
 
-    const ball = (kind, index, centre, fill, label) => {
+    const ball = (kind, index, centre, look, label) => {
       const g = el("g", { class: "ball", tabindex: 0, role: "button",
         "aria-label": `${label}: x = ${metres(centre[0])} m, y = ${metres(centre[1])} m; arrow keys move it` }, this.ballLayer);
-      drawBall(g, centre[0], centre[1], s.ball_radius, fill);
+      drawBall(g, centre[0], centre[1], s.ball_radius, look);
       el("title", {}, g).textContent = `${label} (${metres(centre[0])}, ${metres(centre[1])}) m`;
       this.balls.push({ kind, index, group: g });
       return g;
