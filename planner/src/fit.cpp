@@ -506,15 +506,24 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
 
 // ---- Calibration ----
 
+std::vector<std::string> constant_names(const phys::Scene& s) {
+  std::vector<std::string> names(std::begin(kConstantNames), std::end(kConstantNames));
+  if (s.ball_and_cushion.model == phys::CushionModel::stronge_compliant) names.push_back(kEtaSquaredName);
+  return names;
+}
+
 std::vector<double> constants_of(const phys::Scene& s) {
-  return {s.cloth.mu_slide,
-          s.cloth.mu_roll,
-          s.cloth.mu_spin,
-          s.ball_and_cushion.mu_cushion,
-          s.ball_and_cushion.restitution,
-          s.ball_and_cushion.cushion_height,
-          s.ball_contact.mu_ball,
-          s.ball_contact.restitution};
+  std::vector<double> c{s.cloth.mu_slide,
+                        s.cloth.mu_roll,
+                        s.cloth.mu_spin,
+                        s.ball_and_cushion.mu_cushion,
+                        s.ball_and_cushion.restitution,
+                        s.ball_and_cushion.cushion_height,
+                        s.ball_contact.mu_ball,
+                        s.ball_contact.restitution};
+  if (s.ball_and_cushion.model == phys::CushionModel::stronge_compliant)
+    c.push_back(s.ball_and_cushion.eta_squared);
+  return c;
 }
 
 void set_constants(const std::vector<double>& c, phys::Scene* s) {
@@ -526,13 +535,18 @@ void set_constants(const std::vector<double>& c, phys::Scene* s) {
   s->ball_and_cushion.cushion_height = c[5];
   s->ball_contact.mu_ball = c[6];
   s->ball_contact.restitution = c[7];
+  if (c.size() > static_cast<size_t>(kConstantCount)) s->ball_and_cushion.eta_squared = c[kConstantCount];
 }
 
-std::vector<double> constant_lower_bounds() {
-  return {0.05, 0.001, 0.001, 0.0, 0.5, 0.032, 0.0, 0.7};
+std::vector<double> constant_lower_bounds(size_t count) {
+  std::vector<double> lo{0.05, 0.001, 0.001, 0.0, 0.5, 0.032, 0.0, 0.7};
+  if (count > lo.size()) lo.push_back(0.9);  // eta_squared
+  return lo;
 }
-std::vector<double> constant_upper_bounds() {
-  return {0.5, 0.02, 0.06, 0.5, 1.0, 0.042, 0.2, 1.0};
+std::vector<double> constant_upper_bounds(size_t count) {
+  std::vector<double> hi{0.5, 0.02, 0.06, 0.5, 1.0, 0.042, 0.2, 1.0};
+  if (count > hi.size()) hi.push_back(3.4);  // eta_squared
+  return hi;
 }
 
 namespace {
@@ -549,8 +563,8 @@ struct ConstantsObjective {
   double best = kInf;
   std::vector<double> best_c;
   std::vector<double> constants(const double* u) const {
-    std::vector<double> c(kConstantCount);
-    for (int i = 0; i < kConstantCount; ++i) c[i] = lo[i] + u[i] * (hi[i] - lo[i]);
+    std::vector<double> c(lo.size());
+    for (size_t i = 0; i < c.size(); ++i) c[i] = lo[i] + u[i] * (hi[i] - lo[i]);
     return c;
   }
   double loss_at(const std::vector<double>& c) const {
@@ -619,13 +633,13 @@ std::vector<double> fit_constants(const std::vector<ShotData>& all, const std::v
                            strokes,
                            &o.fit,
                            threads,
-                           constant_lower_bounds(),
-                           constant_upper_bounds(),
+                           constant_lower_bounds(c.size()),
+                           constant_upper_bounds(c.size()),
                            o.refit_evaluations,
                            kInf,
                            {}};
-    std::vector<double> u(kConstantCount);
-    for (int i = 0; i < kConstantCount; ++i) u[i] = (c[i] - obj.lo[i]) / (obj.hi[i] - obj.lo[i]);
+    std::vector<double> u(c.size());
+    for (size_t i = 0; i < c.size(); ++i) u[i] = (c[i] - obj.lo[i]) / (obj.hi[i] - obj.lo[i]);
     obj.best = obj.loss_at(c);
     obj.best_c = c;
     const double before = obj.best;
@@ -698,15 +712,16 @@ CalibrationResult calibrate(const std::vector<ShotData>& shots, const phys::Scen
                          &strokes,
                          &o.fit,
                          threads,
-                         constant_lower_bounds(),
-                         constant_upper_bounds(),
+                         constant_lower_bounds(c0.size()),
+                         constant_upper_bounds(c0.size()),
                          o.refit_evaluations,
                          kInf,
                          {}};
   const double l0 = obj.loss_at(res.constants);
-  for (int i = 0; i < kConstantCount; ++i) {
+  const std::vector<std::string> names = constant_names(start);
+  for (size_t i = 0; i < c0.size(); ++i) {
     ConstantReport r;
-    r.name = kConstantNames[i];
+    r.name = names[i];
     r.value = res.constants[i];
     if (!res.fold_constants.empty()) {
       double mean = 0, var = 0;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -43,8 +44,8 @@ struct Truth {
 // sparser once a ball rolls slowly), Gaussian noise of 1 cm on each coordinate, the
 // strike `offset_s` after t = 0; in the file's frame and units.
 json tracked_shot(int id, const std::vector<phys::Vec2>& start, const Truth& truth,
-                  std::mt19937& rng) {
-  phys::Scene scene = prob::carom_scene();
+                  std::mt19937& rng, const phys::Scene& table = prob::carom_scene()) {
+  phys::Scene scene = table;
   for (size_t k = 1; k < start.size(); ++k)
     scene.balls.push_back({"b" + std::to_string(k), start[k]});
   phys::SimulationOptions o;
@@ -269,6 +270,54 @@ TEST(FitCli, CaromPresetAndPhysicsOverrides) {
   EXPECT_DOUBLE_EQ(s.cloth.mu_roll, 0.0043);
   EXPECT_NE(prob::apply_physics_block("physics: {mu_rol: 0.0043}\n", "<p>", &s).find("mu_rol"),
             std::string::npos);
+}
+
+// `calibrate` moves a constant the shots were simulated with back toward its true value:
+// three shots rolled on a cloth with mu_roll 0.0065 (the preset's is 0.005), calibrated
+// from the preset. With the stronge_compliant cushion it also fits eta_squared.
+TEST(CalibrateCli, RecoversTheRollingResistanceAndFitsEtaSquaredForTheCompliantCushion) {
+  phys::Scene truth_table = prob::carom_scene();
+  truth_table.cloth.mu_roll = 0.0065;
+  std::mt19937 rng(11);
+  std::ostringstream file;
+  file << tracked_shot(1, {{0.5, 0.4}, {1.6, 0.9}, {2.2, 0.3}}, {{2.4, 20.0, 0.4, -0.3}, 0.008}, rng,
+                       truth_table).dump() << '\n';
+  file << tracked_shot(2, {{2.3, 0.5}, {0.8, 1.1}, {1.4, 0.25}}, {{2.0, 155.0, -0.2, 0.3}, 0.01}, rng,
+                       truth_table).dump() << '\n';
+  file << tracked_shot(3, {{1.2, 1.2}, {1.6, 0.5}, {0.4, 0.3}}, {{2.8, -70.0, 0.3, 0.2}, 0.004}, rng,
+                       truth_table).dump() << '\n';
+  const auto tracks = scratch() / "calibrate_tracks.jsonl";
+  write_text(tracks, file.str());
+  const std::string common = " --folds 1 --rounds 1 --evaluations 40 --refit-evaluations 20 --threads 2";
+  const ProcessResult run = cueplan("calibrate " + tracks.string() + common + " --out " +
+                                    (scratch() / "calibrated.yaml").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  double start = 0, fitted = 0;
+  std::istringstream table(run.out);
+  std::string line;
+  bool found = false;
+  while (std::getline(table, line)) {
+    std::istringstream row(line);
+    std::string name;
+    if (row >> name && name == "mu_roll" && (row >> start >> fitted)) found = true;
+  }
+  ASSERT_TRUE(found) << run.out;
+  std::cout << "calibrate: mu_roll " << start << " -> " << fitted << " (simulated with 0.0065)\n"
+            << run.out.substr(0, run.out.find("per shot"));
+  EXPECT_DOUBLE_EQ(start, 0.005);
+  EXPECT_LT(std::fabs(fitted - 0.0065), std::fabs(start - 0.0065) / 2) << run.out;
+  EXPECT_EQ(run.out.find("eta_squared"), std::string::npos) << run.out;
+
+  write_text(scratch() / "stronge.yaml", "physics: {cushion_model: stronge_compliant, eta_squared: 1.5}\n");
+  const ProcessResult compliant =
+      cueplan("calibrate " + tracks.string() + common + " --physics " +
+              (scratch() / "stronge.yaml").string() + " --out " + (scratch() / "stronge_out.yaml").string());
+  ASSERT_EQ(compliant.exit_code, 0) << compliant.err;
+  std::cout << compliant.out.substr(0, compliant.out.find("per shot"));
+  EXPECT_NE(compliant.out.find("\neta_squared "), std::string::npos) << compliant.out;
+  const std::string written = read_text(scratch() / "stronge_out.yaml");
+  EXPECT_NE(written.find("eta_squared:"), std::string::npos) << written;
+  EXPECT_NE(written.find("cushion_model: \"stronge_compliant\""), std::string::npos) << written;
 }
 
 }  // namespace

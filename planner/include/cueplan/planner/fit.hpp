@@ -141,11 +141,19 @@ inline constexpr int kConstantCount = 8;
 inline constexpr const char* kConstantNames[kConstantCount] = {
     "mu_slide", "mu_roll",     "mu_spin", "mu_cushion", "restitution", "cushion_height",
     "mu_ball",  "ball_restitution"};  // the physics: block's field names
+// With the stronge_compliant cushion a ninth constant follows them: "eta_squared", the
+// cushion's normal over tangential contact stiffness (kept within the model's valid
+// 0.875-3.5; docs/cushion_models.md).
+inline constexpr const char* kEtaSquaredName = "eta_squared";
+// The names of the constants calibrate fits for `scene`'s cushion model.
+std::vector<std::string> constant_names(const physics::Scene& scene);
+// 8 values, or 9 with the stronge_compliant cushion (constant_names' order).
 std::vector<double> constants_of(const physics::Scene& scene);
+// Writes c (8 values, or 9: the ninth is eta_squared) into the scene.
 void set_constants(const std::vector<double>& c, physics::Scene* scene);
-// Bounds the search keeps to.
-std::vector<double> constant_lower_bounds();
-std::vector<double> constant_upper_bounds();
+// Bounds the search keeps to, for `count` constants (8 or 9).
+std::vector<double> constant_lower_bounds(size_t count = kConstantCount);
+std::vector<double> constant_upper_bounds(size_t count = kConstantCount);
 
 struct CalibrationOptions {
   int folds = 5;
