@@ -66,7 +66,8 @@ void add_planner_flags(CLI::App& c, PlannerArgs* args, const char* group) {
       ->capture_default_str()
       ->group(group);
   c.add_option("--seed", args->seed,
-               "Seed of every random choice: the same seed and options give the same answer")
+               "Seed of the search's own random choices (the same seed and options give the same "
+               "answer); a reference half of the search and the success draws do not depend on it")
       ->type_name("N")
       ->capture_default_str()
       ->group(group);

@@ -3,7 +3,9 @@
 // Stages, in order (Planning::run):
 //   1. check    - the options and the problem (problems::validate), once;
 //   2. global   - NLopt's global method over the unit cube of strokes, remembering the
-//                 best stroke of every family (route and spin) it meets;
+//                 best stroke of every family (route and spin) it meets: half the
+//                 budget from kReferenceSeed (the same families whatever the seed),
+//                 then half from the seed;
 //   3. polish   - the local method from the best stroke of each of the best families,
 //                 in parallel, each start on its own seeded stream; while the budget
 //                 allows, polishes still improving are continued and, once all have
@@ -12,7 +14,8 @@
 //                 with the exact method (and polished with it if they moved out);
 //   5. simplify - each solved shot with side is tried again with its side removed and
 //                 halved, re-polished with that side held when it no longer lands;
-//   6. rank     - the success of every solved shot on the same noise draws; a side
+//   6. rank     - the success of every solved shot on the same noise draws (from
+//                 kReferenceSeed, whatever the seed); a side
 //                 variant the samples cannot tell from its parent replaces it; then the
 //                 coach's order (ranking.hpp) and one shot per family;
 //   7. robust   - (--robust) each solved shot polished for its success probability;
@@ -157,6 +160,8 @@ class NominalObjective {
     return fall <= kProgress || kHorizon * fall < best_.score - target;
   }
   const std::map<FamilyKey, Candidate>& families() const { return families_; }
+  // The families met so far, forgetting them: the next run's are its own.
+  std::map<FamilyKey, Candidate> take_families() { return std::exchange(families_, {}); }
 
  private:
   const Task& task_;
@@ -599,6 +604,7 @@ class Planning {
   void global_stage(const Task& task) {
     const SearchSpace space(problem_.limits, 0.0, std::nullopt, task.pot_aim.has_value());
     NominalObjective global(task, space, search_sim_, options_.enforce_rigid_limit, true);
+    std::map<FamilyKey, Candidate> reference;  // the families of the reference run
     const int budget =
         std::max(1, static_cast<int>(options_.global_share * options_.max_evaluations));
     if (options_.global == GlobalMethod::ompl_kpiece1) {
@@ -631,22 +637,50 @@ class Planning {
       s.inner_x_tolerance = kXTolerance;
       s.inner_f_tolerance = kFTolerance;
       s.inner_step = kPolishStep;
-      nlopt_srand(detail::stream_seed(options_.seed, 0));
+      // Two runs of half the budget each: the reference run, from kReferenceSeed, finds
+      // the same families whatever the seed; the seeded run adds its own.
+      const int reference_budget = std::max(1, budget / 2);
+      const double time_s = s.max_time_s;
+      s.max_evaluations = reference_budget;
+      s.max_simulations = reference_budget;
+      s.max_time_s = 0.5 * time_s;
+      s.inner_max_evaluations = std::max(20, s.max_evaluations / 10);
+      nlopt_srand(detail::stream_seed(kReferenceSeed, 0));
       detail::run_stage(s, &x, &global);
+      reference = global.take_families();
+      x.assign(x.size(), 0.5);
+      s.max_evaluations = std::max(1, budget - global.evaluations());
+      s.max_simulations = budget;  // the counter runs on from the reference run's
+      s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
+      nlopt_srand(detail::stream_seed(options_.seed, 0));
+      if (global.evaluations() < budget) detail::run_stage(s, &x, &global);
     }
     result_.evaluations += global.evaluations();
     timed_out_ = search_seconds_left() <= 0.0;
     global_best_ = global.best();
 
-    // Families by their best score (map order breaks ties, so the ranking is fixed);
-    // strokes that end early are starts only when nothing else was met.
+    // Starts: the reference run's families by their best score (map order breaks ties,
+    // so the ranking is fixed), then those of the seeded run that it did not meet or met
+    // nearer; strokes that end early are starts only when nothing else was met. The
+    // polish takes them in this order, so the reference families are polished first
+    // and the answer the same whatever the seed.
+    const std::map<FamilyKey, Candidate> seeded = global.take_families();
+    const auto by_score = [](const Candidate& a, const Candidate& b) { return a.score < b.score; };
     for (bool ended_early : {false, true}) {
-      for (const auto& [key, c] : global.families())
-        if (key.ended_early == ended_early) starts_.push_back(c);
+      std::vector<Candidate> first, then;
+      for (const auto& [key, c] : reference)
+        if (key.ended_early == ended_early) first.push_back(c);
+      for (const auto& [key, c] : seeded) {
+        if (key.ended_early != ended_early) continue;
+        const auto known = reference.find(key);
+        if (known == reference.end() || c.score < known->second.score) then.push_back(c);
+      }
+      std::stable_sort(first.begin(), first.end(), by_score);
+      std::stable_sort(then.begin(), then.end(), by_score);
+      starts_ = std::move(first);
+      starts_.insert(starts_.end(), then.begin(), then.end());
       if (!starts_.empty()) break;
     }
-    std::stable_sort(starts_.begin(), starts_.end(),
-                     [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
   }
 
   // 3. Local polish in passes of up to local_starts starts, until the budget is spent
@@ -1126,7 +1160,9 @@ class Planning {
   bool out_of_evaluations_ = false;
   std::vector<Final> finals_;
   int next_id_ = 0;  // Final::id of the next shot described for ranking
-  detail::NoiseStream draws_{options_.seed};  // the common draws of every success estimate
+  // The common draws of every success estimate: the same whatever the seed, so that a
+  // stroke's success does not depend on it.
+  detail::NoiseStream draws_{kReferenceSeed};
   bool any_solved_ = false;
   bool unreachable_ = false;
   std::optional<problems::PotScreen> screen_;  // a direct pot the geometry rules out

@@ -237,7 +237,9 @@ class Simulate(unittest.TestCase):
 
 class Solve(unittest.TestCase):
     def test_a_shipped_pot_is_solved_and_pots(self):
-        plan = cueplan.solve(POT, **QUICK)
+        # 800 simulations: at QUICK's 300 the search's seed-independent half (issue 31)
+        # misses this pot's zone whatever the seed (bench/README, "Stable answers").
+        plan = cueplan.solve(POT, **dict(QUICK, max_evaluations=800))
         self.assertEqual(plan.status, "solved", plan.message)
         self.assertGreater(plan.success["pot"]["p"], 0)
         shot = plan.shot

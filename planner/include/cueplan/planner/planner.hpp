@@ -128,7 +128,11 @@ struct PlannerOptions {
   double max_time_s = 10.0;
   int local_starts = 6;        // distinct global candidates (best of their families) polished locally
   double global_share = 0.5;   // fraction of max_evaluations the global stage may use, (0, 1)
-  uint64_t seed = 1;           // every random choice derives from it
+  // The global search's second half and the polishes derive from it. The first half
+  // of the global search and the noise draws of every success estimate do not
+  // (kReferenceSeed): whatever the seed, the same strokes are found and ranked, so the
+  // advice is the same (issue 31, "Stable answers").
+  uint64_t seed = 1;
   int threads = 1;             // local polishes run in parallel; the result does not change
   bool enforce_rigid_limit = false;  // reject shots whose cushion normal speed exceeds it
   bool robust = false;         // maximise the success probability, not the nominal miss
@@ -295,6 +299,11 @@ struct PlanResult {
 // The next pot from `landing` in a player's terms (a problem with `next`, its field).
 NextReport next_report(const problems::Problem& problem, const PositionField& field,
                        physics::Vec2 landing);
+
+// The seed of the reference search (the first half of the global stage) and of the
+// noise draws plan() estimates every success on, whatever PlannerOptions::seed:
+// plan()'s success of a stroke equals estimate_success(..., kReferenceSeed, ...).
+inline constexpr uint64_t kReferenceSeed = 0x636f616368ULL;  // "coach"
 
 PlanResult plan(const problems::Problem& problem, const PlannerOptions& options);
 
