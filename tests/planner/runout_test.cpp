@@ -193,6 +193,34 @@ TEST(RunoutTest, AHiddenBallIsPlayedOffACushionAndTheRunGoesOn) {
   EXPECT_EQ(one.mean_potted, two.mean_potted);
 }
 
+// Nine-ball with no direct pot of the 1 (the 2 screens its line to the top right
+// pocket; the other pockets ask cuts beyond 90 deg): a combination, the 1 struck first
+// and driven onto the 2, which drops; legal when re-simulated.
+TEST(RunoutTest, NineBallPlaysACombinationWhenNoDirectPotIsOn) {
+  const prob::LayoutResult r = prob::parse_layout(
+      "name: combination\ngame: nine_ball\nballs:\n  \"1\": [3.0, 1.4]\n  \"2\": [3.1, 1.466]\n"
+      "  \"3\": [1.5, 0.4]\ncue_ball: [0.5, 0.3]\n",
+      "combination.yaml");
+  ASSERT_TRUE(r.ok()) << r.error;
+  const prob::GameState state = prob::initial_state(prob::Game::nine_ball, {});
+  plan::RunoutOptions o;
+  o.samples = 0;
+  o.report_samples = 0;
+  o.threads = 2;
+  o.max_shots = 1;
+  const plan::RunoutResult res = plan::plan_runout(r.layout->problem, state, o);
+  ASSERT_EQ(res.plan.shots.size(), 1u);
+  const plan::RunShot& s = res.plan.shots.front();
+  EXPECT_EQ(s.ball, "2");
+  EXPECT_EQ(s.route, "combination off the 1");
+  const phys::ShotResult sim = phys::simulate(r.layout->problem.scene, r.layout->problem.cue_ball, s.shot);
+  ASSERT_GT(sim.first_contact, 0);
+  EXPECT_EQ(sim.balls[static_cast<size_t>(sim.first_contact)].name, "1");
+  const prob::ShotJudgement j = prob::judge_stroke(state, r.layout->problem.scene, {s.ball, s.pocket}, sim);
+  EXPECT_TRUE(j.continues) << j.reason;
+  EXPECT_EQ(j.potted, std::vector<std::string>{"2"});
+}
+
 TEST(RunoutTest, PotChanceEstimateFallsWithTheCutAndIsZeroWhenScreened) {
   // The default table of a layout file: snooker, jawed pockets.
   const prob::LayoutResult loaded =
