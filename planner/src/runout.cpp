@@ -408,8 +408,12 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
     return best;
   };
 
-  // No direct pot on, or only a poor one: banks, kicks and combinations as well.
-  if (const Trial* direct = best_of(); direct == nullptr || direct->p_pot < kFallbackBelow) {
+  // No direct pot on, or none that pots under the noise: banks, kicks and combinations
+  // as well.
+  double direct_p = 0.0;
+  for (const Trial& t : trials)
+    if (t.ok) direct_p = std::max(direct_p, t.p_pot);
+  if (direct_p < kFallbackBelow) {
     // Routes (kick.hpp) of every legal (ball, pocket), off one or two cushions in all.
     struct Route {
       size_t problem = 0;
