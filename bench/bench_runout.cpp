@@ -5,7 +5,9 @@
 // on one thread.
 //
 //   bench_runout [--kind any5|nine|snooker] [--layouts N] [--rollouts M] [--seed S]
-//                [--threads T] [--lookahead K]
+//                [--threads T] [--lookahead K] [--only K] [--show-plan 1]
+// --only K plays only layout K of the set; --show-plan 1 prints each layout's plan (the
+// policy without noise: ball, pocket, route, P(pot) while choosing, verdict).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -117,7 +119,7 @@ Generated generate(const std::string& kind, uint64_t seed) {
 
 int main(int argc, char** argv) {
   std::string kind = "any5";
-  int layouts = 20, rollouts = 40, threads = 0, lookahead = 2;
+  int layouts = 20, rollouts = 40, threads = 0, lookahead = 2, only = -1, show_plan = 0;
   uint64_t seed = 29;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
@@ -127,6 +129,8 @@ int main(int argc, char** argv) {
     else if (flag == "--seed") seed = std::stoull(value);
     else if (flag == "--threads") threads = std::stoi(value);
     else if (flag == "--lookahead") lookahead = std::stoi(value);
+    else if (flag == "--only") only = std::stoi(value);
+    else if (flag == "--show-plan") show_plan = std::stoi(value);
     else {
       std::fprintf(stderr, "bench_runout: unknown flag %s\n", flag.c_str());
       return 2;
@@ -138,7 +142,10 @@ int main(int argc, char** argv) {
   double sum_p = 0, sum_g = 0, pot_p = 0, pot_g = 0;
   std::vector<double> decisions;
   double total_rollout_s = 0;
+  int played = 0;
   for (int k = 0; k < layouts; ++k) {
+    if (only >= 0 && k != only) continue;
+    ++played;
     const Generated g = generate(kind, seed * 1000 + static_cast<uint64_t>(k));
     const problems::GameState start = problems::initial_state(g.game, std::nullopt);
     planner::RunoutOptions o;
@@ -165,8 +172,25 @@ int main(int argc, char** argv) {
     pot_g += rg.mean_potted;
     std::printf("%6d  %7.3f  %6.3f  %9.2f  %9.2f  %10.3f  %10.1f  %14.1f\n", k, rp.runout.p, rg.runout.p,
                 rp.mean_potted, rg.mean_potted, decisions.back(), rp.time_s, cpu_s);
+    if (show_plan)
+      for (const planner::RunShot& s : rp.plan.shots)
+        std::printf("        %s into %s, %s, P(pot) %.3f, score %.3f: %s\n", s.ball.c_str(), s.pocket_name.c_str(),
+                    s.route.c_str(), s.p_pot, s.score, s.verdict.c_str());
+    if (show_plan > 1)
+      for (uint64_t sd = 1; sd <= 12; ++sd) {
+        planner::RunoutOptions q = o;
+        q.policy = planner::RunPolicy::planner;
+        const auto c = planner::choose_stroke(g.layout.problem, start, g.layout.problem.scene.balls,
+                                              g.layout.problem.cue_ball, q, sd * 7919, 2);
+        if (c) std::printf("        seed %llu: %s into %s, %s, P(pot) %.3f, score %.3f\n", (unsigned long long)sd,
+                           c->ball.c_str(), c->pocket_name.c_str(), c->route.c_str(), c->p_pot, c->score);
+      }
+    if (show_plan)
+      for (const planner::RunDeath& d : rp.deaths)
+        std::printf("        runs end at shot %d: %s (%d)\n", d.shot, d.reason.c_str(), d.count);
     std::fflush(stdout);
   }
+  layouts = played;
   std::sort(decisions.begin(), decisions.end());
   std::printf("mean P(run-out): planner %.3f, greedy %.3f (difference %.3f); mean potted %.2f vs %.2f\n",
               sum_p / layouts, sum_g / layouts, (sum_p - sum_g) / layouts, pot_p / layouts, pot_g / layouts);

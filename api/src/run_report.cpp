@@ -64,6 +64,8 @@ ordered_json run_json(const prob::Layout& layout, const prob::GameState& start,
     shot["final_position"] = point_json(s.cue_to);
     shot["next"] = s.next_ball.empty() ? ordered_json() : ordered_json(s.next_ball);
     shot["verdict"] = s.verdict;
+    shot["route"] = s.route;
+    shot["route_words"] = s.route_words;
     shot["score"] = s.score;
     shots.push_back(shot);
   }

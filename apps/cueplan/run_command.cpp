@@ -67,6 +67,7 @@ void write_text(std::ostream& out, const prob::Layout& layout, const prob::GameS
   for (size_t i = 0; i < r.plan.shots.size(); ++i) {
     const plan::RunShot& s = r.plan.shots[i];
     line("shot " + std::to_string(i + 1), s.ball + " into " + s.pocket_name);
+    if (s.route != "direct") line("    route", s.route + ": " + s.route_words);
     line("    stroke", stroke_words(problem.scene, s.shot));
     line("    P(pot)", estimate_text(s.pot) + " of " + std::to_string(s.pot.samples) + " noisy strokes");
     std::string zone = "cue ball to " + position_text(s.cue_to);
@@ -121,7 +122,8 @@ draw::TableScene drawing_of(const prob::Layout& layout, const prob::GameState& s
   d.title = problem.name + ": " + ended_text(r.plan);
   for (size_t i = 0; i < r.plan.shots.size(); ++i) {
     const plan::RunShot& s = r.plan.shots[i];
-    d.caption.push_back(fmt::format("{}. {} into {} ({}); P(pot) {:.0f} %.", i + 1, s.ball, s.pocket_name,
+    const std::string route = s.route == "direct" ? std::string() : ", " + s.route;
+    d.caption.push_back(fmt::format("{}. {} into {}{} ({}); P(pot) {:.0f} %.", i + 1, s.ball, s.pocket_name, route,
                                     plan::describe_stroke(s.shot), 100.0 * s.pot.p));
   }
   if (r.runout.samples > 0)

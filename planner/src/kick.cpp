@@ -617,6 +617,100 @@ std::vector<physics::Shot> solve_kick(const Task& task, const KickRoute& route,
 
 namespace {
 
+struct Combination {
+  Vec2 cue, first, ball, pocket;  // the cue ball, the two balls' centres, the pocket's
+  Vec2 cue_ghost, ball_ghost;     // where the cue ball strikes the first, the first the pot's ball
+  double length = 0.0;
+  double cue_cut_deg = 0.0;
+};
+
+constexpr double kMaxCombinationCut = 60.0;        // deg: the cue ball on the first ball
+constexpr double kMaxCombinationSecondCut = 45.0;  // deg: the first ball on the pot's ball
+
+std::optional<Combination> combination(const problems::Problem& problem) {
+  if (!problem.pot || !problem.first_contact) return std::nullopt;
+  const physics::Scene& scene = problem.scene;
+  const int a = ball_index(scene, *problem.first_contact), b = ball_index(scene, problem.pot->ball);
+  if (a == 0 || b == 0 || a == b || problem.pot->pocket < 0 ||
+      problem.pot->pocket >= static_cast<int>(scene.pockets.size()))
+    return std::nullopt;
+  const double r = scene.radius();
+  Combination c;
+  c.cue = problem.cue_ball;
+  c.first = scene.balls[static_cast<size_t>(a - 1)].position;
+  c.ball = scene.balls[static_cast<size_t>(b - 1)].position;
+  c.pocket = scene.pockets[static_cast<size_t>(problem.pot->pocket)].centre;
+  const Vec2 u = unit(sub(c.pocket, c.ball));
+  c.ball_ghost = sub(c.ball, scale(u, 2.0 * r));
+  const Vec2 d = unit(sub(c.ball_ghost, c.first));
+  c.cue_ghost = sub(c.first, scale(d, 2.0 * r));
+  const Vec2 v = unit(sub(c.cue_ghost, c.cue));
+  c.cue_cut_deg = std::acos(std::clamp(dot(v, d), -1.0, 1.0)) * kDeg;
+  const double second_cut = std::acos(std::clamp(dot(d, u), -1.0, 1.0)) * kDeg;
+  if (c.cue_cut_deg > kMaxCombinationCut || second_cut > kMaxCombinationSecondCut) return std::nullopt;
+  if (dot(sub(c.ball_ghost, c.first), d) <= 0.0 || norm(sub(c.ball_ghost, c.first)) < 2.0 * r)
+    return std::nullopt;
+  const Geometry geo(problem);
+  const std::string& first = *problem.first_contact;
+  const std::string& pot = problem.pot->ball;
+  if (geo.screen(c.cue, c.cue_ghost, {first}, true) || geo.screen(c.first, c.ball_ghost, {first, pot}, true) ||
+      geo.screen(c.ball, c.pocket, {pot}, true))
+    return std::nullopt;
+  c.length = norm(sub(c.cue_ghost, c.cue)) + norm(sub(c.ball_ghost, c.first)) + norm(sub(c.pocket, c.ball));
+  return c;
+}
+
+}  // namespace
+
+std::optional<double> combination_length(const problems::Problem& problem) {
+  const std::optional<Combination> c = combination(problem);
+  if (!c) return std::nullopt;
+  return c->length;
+}
+
+std::vector<physics::Shot> solve_combination(const Task& task, const physics::SimulationOptions& simulation,
+                                             int keep, int* simulations) {
+  std::vector<physics::Shot> solved;
+  const problems::Problem& problem = task.problem;
+  const std::optional<Combination> c = combination(problem);
+  if (!c) return solved;
+  const problems::Limits& l = problem.limits;
+  const int first = ball_index(problem.scene, *problem.first_contact);
+  const int pot = ball_index(problem.scene, problem.pot->ball);
+  physics::SimulationOptions sim = simulation;
+  sim.record_path = true;
+  // Enough speed to carry both balls, slowed by the two cuts.
+  const double base = std::clamp(1.2 + 0.6 * c->length / std::max(0.4, std::cos(c->cue_cut_deg / kDeg)),
+                                 l.speed_min, l.speed_max);
+  const double seed_aim = std::atan2(c->cue_ghost.y - c->cue.y, c->cue_ghost.x - c->cue.x) * kDeg;
+  const std::vector<std::pair<double, double>> spins{{0.0, 0.0}, {0.5, 0.0}, {-0.5, 0.0}};
+  for (const auto& [kt0, ks] : spins) {
+    const double kt = std::clamp(kt0, -l.spin_max, l.spin_max);
+    for (double speed : {base, std::clamp(1.4 * base, l.speed_min, l.speed_max)}) {
+      if (static_cast<int>(solved.size()) >= keep) return solved;
+      physics::Shot shot{speed, seed_aim, kt, ks, l.elevation_min_deg};
+      const auto error = [&](double aim, physics::ShotResult* r) -> std::optional<double> {
+        shot.aim_deg = wrap_degrees(aim);
+        *r = task.simulate(shot, sim);
+        ++*simulations;
+        if (r->first_contact != first || r->balls.size() <= static_cast<size_t>(pot)) return std::nullopt;
+        return leg_offset(r->balls[static_cast<size_t>(pot)], 0, c->pocket);
+      };
+      const Root root = solve_root(error, seed_aim - squirt_of(problem, shot), std::nullopt, kPocketTolerance,
+                                   std::chrono::steady_clock::time_point::max());
+      if (!root.found) continue;
+      shot.aim_deg = wrap_degrees(root.x);
+      if (problems::check_stroke(problem, shot, root.result).solves()) {
+        solved.push_back(shot);
+        break;
+      }
+    }
+  }
+  return solved;
+}
+
+namespace {
+
 std::string cushion_words(int c) {
   switch (c) {
     case 0: return "the bottom cushion";

@@ -78,6 +78,19 @@ std::vector<physics::Shot> solve_kick(const Task& task, const KickRoute& route,
                                       std::chrono::steady_clock::time_point deadline, int keep,
                                       int* simulations);
 
+// A combination: the cue ball strikes problem.first_contact directly, which drives the
+// pot's ball into its pocket. The cue ball's path to its ghost ball, the first ball's to
+// the pot's ball's ghost ball and that ball's to its pocket must be clear (two radii from
+// every other ball), the cue ball's cut at most 60 deg and the first ball's 45 deg: then
+// the three legs' length (the cost a route is ranked by), else empty.
+std::optional<double> combination_length(const problems::Problem& problem);
+
+// Strokes that play that combination (problems::check_stroke: the first contact and the
+// pot), at most `keep`: a few speeds and spins, the aim solved on `simulation` so that
+// the pot's ball's path passes its pocket's centre. *simulations counts what it cost.
+std::vector<physics::Shot> solve_combination(const Task& task, const physics::SimulationOptions& simulation,
+                                             int keep, int* simulations);
+
 // The route a stroke took, in a player's words: "one cushion off the top cushion,
 // right-hand side, to hit the red full; the red doubles off the bottom cushion into the
 // top middle pocket". Empty when the problem names no ball to strike.

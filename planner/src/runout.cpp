@@ -2,6 +2,8 @@
 // ball stops) and its rollouts under the execution noise. See runout.hpp.
 #include "cueplan/planner/runout.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include "cueplan/planner/position.hpp"
 
 #include "cueplan/physics/parallel.hpp"
+#include "kick.hpp"
 #include "pot_aim.hpp"
 #include "robustness.hpp"
 #include "task.hpp"
@@ -260,6 +263,39 @@ PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& n
   return position_value(std::make_shared<PotFields>(scene, noise), scene, lookahead, beam);
 }
 
+namespace {
+
+const char* count_words(int n) {
+  switch (n) {
+    case 1: return "one";
+    case 2: return "two";
+    case 3: return "three";
+  }
+  return "many";
+}
+
+// The route a stroke took, from its result: "direct", "one-cushion bank", "two-cushion
+// kick", "one-cushion kick and one-cushion bank", "combination off the 1".
+std::string route_of(const problems::Problem& problem, const physics::ShotResult& result) {
+  if (result.first_contact <= 0 || result.first_contact >= static_cast<int>(result.balls.size()))
+    return "direct";
+  const std::string& first = result.balls[static_cast<size_t>(result.first_contact)].name;
+  const int kick = problems::cushions_before_contact(result);
+  int bank = 0;
+  for (const physics::BallOutcome& b : result.balls)
+    if (problem.pot && b.name == problem.pot->ball)
+      for (const physics::ShotEvent& e : b.events)
+        if (e.type == physics::EventType::cushion) ++bank;
+  std::string s;
+  if (kick > 0) s = fmt::format("{}-cushion kick", count_words(kick));
+  if (bank > 0) s += fmt::format("{}{}-cushion bank", s.empty() ? "" : " and ", count_words(bank));
+  if (problem.pot && first != problem.pot->ball)
+    s += (s.empty() ? "" : ", ") + std::string("combination off the ") + first;
+  return s.empty() ? "direct" : s;
+}
+
+}  // namespace
+
 std::optional<RunShot> choose_stroke(const problems::Problem& layout, const problems::GameState& state,
                                      const std::vector<physics::ObjectBall>& balls, Vec2 cue,
                                      const RunoutOptions& options, uint64_t seed, int threads) {
@@ -273,6 +309,7 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
   const auto fields = std::make_shared<PotFields>(scene, options.noise);
   const PositionValue value =
       options.position ? options.position : position_value(fields, scene, options.lookahead, 4);
+  const std::vector<std::string> on = problems::balls_on(state, balls);
 
   // Legal pots, the likeliest first, at most eight of them.
   struct Cand {
@@ -280,61 +317,51 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
     double quick = 0.0;
   };
   std::vector<Cand> cands;
-  for (const std::string& ball : problems::balls_on(state, balls))
+  for (const std::string& ball : on)
     for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
       const double q = fields->chance(cue, ball, k, balls);
       if (q > 0.02) cands.push_back({{ball, k}, q});
     }
   std::stable_sort(cands.begin(), cands.end(), [](const Cand& a, const Cand& b) { return a.quick > b.quick; });
   if (cands.size() > 8) cands.resize(8);
-  if (cands.empty()) return std::nullopt;
 
   // Stroke families: speeds by the distance to travel, and draw, stun or follow.
   constexpr double kSpeeds[] = {1.0, 1.7, 2.6, 3.6};
   constexpr double kSpins[] = {-0.9, 0.0, 0.7};
   struct Trial {
-    size_t cand = 0;
+    size_t problem = 0;  // index into problems_of
     physics::Shot shot;
     bool ok = false;
     double p_pot = 0.0;
     double score = -1.0;
   };
+  // One problem per pot tried: its pot, and the ball the cue ball must strike first.
+  std::vector<problems::Problem> problems_of(cands.size(), base);
   std::vector<Trial> trials;
-  for (size_t c = 0; c < cands.size(); ++c)
+  for (size_t c = 0; c < cands.size(); ++c) {
+    problems_of[c].pot = problems::Pot{cands[c].pot.ball, cands[c].pot.pocket};
+    problems_of[c].first_contact = cands[c].pot.ball;
     for (double speed : kSpeeds)
       for (double spin : kSpins) {
         Trial t;
-        t.cand = c;
+        t.problem = c;
         t.shot.speed = speed;
         t.shot.topspin_k = spin;
         trials.push_back(t);
       }
+  }
   const std::vector<detail::NoiseDraw> draws = detail::noise_draws(options.pot_samples, seed);
   physics::SimulationOptions quiet = options.simulation;
   quiet.record_path = false;
+  const auto candidate_of = [&](const problems::Problem& p) -> problems::Candidate {
+    return {p.pot->ball, p.pot->pocket};
+  };
 
-  std::vector<problems::Problem> problems_of(cands.size(), base);
-  for (size_t c = 0; c < cands.size(); ++c) {
-    problems_of[c].pot = problems::Pot{cands[c].pot.ball, cands[c].pot.pocket};
-    problems_of[c].first_contact = cands[c].pot.ball;
-  }
-  physics::parallel_for(trials.size(), physics::thread_count(threads, trials.size()),
-                        [&](size_t i, unsigned) {
-    Trial& t = trials[i];
-    const problems::Problem& problem = problems_of[t.cand];
-    const problems::Candidate& pot = cands[t.cand].pot;
-    const detail::Task task(problem);
-    const detail::PotAim::Aimed aimed = task.pot_aim->aim(task, t.shot, quiet);
-    if (!aimed.found) return;
-    const problems::ShotJudgement nominal = problems::judge_stroke(state, scene, pot, aimed.result);
-    const auto aimed_ball_in = [&](const physics::ShotResult& r) {
-      for (const physics::BallOutcome& b : r.balls)
-        if (b.name == pot.ball) return b.pocketed && b.pocket == pot.pocket;
-      return false;
-    };
-    if (!nominal.continues || !aimed_ball_in(aimed.result)) return;
-    t.shot = aimed.shot;
-    t.ok = true;
+  // Scores a stroke that pots without noise: P(pot) and the mean value of where the cue
+  // ball stops over the noisy strokes.
+  const auto score = [&](Trial& t, const detail::Task& task) {
+    const problems::Problem& problem = problems_of[t.problem];
+    const problems::Candidate pot = candidate_of(problem);
     const double miscue = detail::miscue_limit(problem);
     const double squirt = detail::intended_squirt_deg(problem, t.shot);
     int pots = 0;
@@ -353,15 +380,135 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
     const double n = static_cast<double>(std::max<size_t>(draws.size(), 1));
     t.p_pot = pots / n;
     t.score = options.policy == RunPolicy::planner ? total / n : t.p_pot;
-  });
+  };
+  // Whether the stroke, played without noise, drops the pot's ball in its pocket and the
+  // run goes on.
+  const auto pots_legally = [&](const problems::Problem& problem, const physics::ShotResult& r) {
+    const problems::Candidate pot = candidate_of(problem);
+    if (!problems::judge_stroke(state, scene, pot, r).continues) return false;
+    for (const physics::BallOutcome& b : r.balls)
+      if (b.name == pot.ball) return b.pocketed && b.pocket == pot.pocket;
+    return false;
+  };
 
-  const Trial* best = nullptr;
+  physics::parallel_for(trials.size(), physics::thread_count(threads, trials.size()),
+                        [&](size_t i, unsigned) {
+    Trial& t = trials[i];
+    const detail::Task task(problems_of[t.problem]);
+    const detail::PotAim::Aimed aimed = task.pot_aim->aim(task, t.shot, quiet);
+    if (!aimed.found || !pots_legally(task.problem, aimed.result)) return;
+    t.shot = aimed.shot;
+    t.ok = true;
+    score(t, task);
+  });
+  const auto best_of = [&]() {
+    const Trial* best = nullptr;
+    for (const Trial& t : trials)
+      if (t.ok && (best == nullptr || t.score > best->score)) best = &t;
+    return best;
+  };
+
+  // No direct pot on, or none that pots under the noise: banks, kicks and combinations
+  // as well.
+  double direct_p = 0.0;
   for (const Trial& t : trials)
-    if (t.ok && (best == nullptr || t.score > best->score)) best = &t;
+    if (t.ok) direct_p = std::max(direct_p, t.p_pot);
+  if (direct_p < kFallbackBelow) {
+    // Routes (kick.hpp) of every legal (ball, pocket), off one or two cushions in all.
+    struct Route {
+      size_t problem = 0;
+      detail::KickRoute route;  // empty cue_cushions and object_cushions: a combination
+      int cushions = 0;
+      double length = 0.0;
+      std::string first;        // a combination: the ball struck first
+    };
+    std::vector<Route> routes;
+    for (const std::string& ball : on)
+      for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
+        problems::Problem p = base;
+        p.pot = problems::Pot{ball, k};
+        p.first_contact = ball;
+        p.limits.cushions_before_contact_min = 0;
+        p.limits.cushions_before_contact_max = 2;
+        p.limits.object_cushions_min = 0;
+        p.limits.object_cushions_max = 2;
+        const detail::KickFamilies families = detail::kick_families(p, false);
+        bool any = false;
+        for (const detail::KickRoute& r : families.routes) {
+          const int c = static_cast<int>(r.cue_cushions.size() + r.object_cushions.size());
+          if (c < 1 || c > 2) continue;
+          routes.push_back({problems_of.size(), r, c, r.cue_length + r.object_length, {}});
+          any = true;
+        }
+        if (any) problems_of.push_back(std::move(p));
+      }
+    if (state.game == problems::Game::nine_ball && !on.empty()) {
+      // Combinations: the lowest ball onto another that drops.
+      const std::string& low = on.front();
+      const physics::ObjectBall* lb = find_ball(balls, low);
+      for (const physics::ObjectBall& b : balls) {
+        if (b.name == low || lb == nullptr) continue;
+        for (int k = 0; k < static_cast<int>(scene.pockets.size()); ++k) {
+          problems::Problem p = base;
+          p.pot = problems::Pot{b.name, k};
+          p.first_contact = low;
+          const std::optional<double> length = detail::combination_length(p);
+          if (!length) continue;
+          Route r;
+          r.problem = problems_of.size();
+          r.cushions = 2;  // ranked with the two-cushion routes
+          r.length = *length;
+          r.first = low;
+          routes.push_back(std::move(r));
+          problems_of.push_back(std::move(p));
+        }
+      }
+    }
+    std::stable_sort(routes.begin(), routes.end(), [](const Route& a, const Route& b) {
+      if (a.cushions != b.cushions) return a.cushions < b.cushions;
+      return a.length < b.length;
+    });
+    if (routes.size() > static_cast<size_t>(kMostRoutes)) routes.resize(static_cast<size_t>(kMostRoutes));
+    // Each route's strokes, the aim solved on the simulator (no deadline: the answer
+    // must not depend on the clock).
+    constexpr int kStrokesPerRoute = 2;
+    std::vector<std::vector<physics::Shot>> solved(routes.size());
+    physics::parallel_for(routes.size(), physics::thread_count(threads, routes.size()),
+                          [&](size_t i, unsigned) {
+      const detail::Task task(problems_of[routes[i].problem], false);
+      int simulations = 0;
+      solved[i] = routes[i].first.empty()
+                      ? detail::solve_kick(task, routes[i].route, options.simulation,
+                                           std::chrono::steady_clock::time_point::max(), kStrokesPerRoute,
+                                           &simulations)
+                      : detail::solve_combination(task, options.simulation, kStrokesPerRoute, &simulations);
+    });
+    const size_t first_trial = trials.size();
+    for (size_t i = 0; i < routes.size(); ++i)
+      for (const physics::Shot& shot : solved[i]) {
+        Trial t;
+        t.problem = routes[i].problem;
+        t.shot = shot;
+        trials.push_back(t);
+      }
+    physics::parallel_for(trials.size() - first_trial, physics::thread_count(threads, trials.size() - first_trial),
+                          [&](size_t i, unsigned) {
+      Trial& t = trials[first_trial + i];
+      const detail::Task task(problems_of[t.problem], false);
+      physics::SimulationOptions sim = options.simulation;
+      sim.record_path = false;
+      if (!pots_legally(task.problem, task.simulate(t.shot, sim))) return;
+      t.ok = true;
+      score(t, task);
+    });
+  }
+
+  const Trial* best = best_of();
   if (best == nullptr) return std::nullopt;
 
   RunShot out;
-  const problems::Candidate& pot = cands[best->cand].pot;
+  const problems::Problem& chosen = problems_of[best->problem];
+  const problems::Candidate pot = candidate_of(chosen);
   out.ball = pot.ball;
   out.pocket = pot.pocket;
   out.pocket_name = problems::pocket_name(scene, pot.pocket);
@@ -373,6 +520,8 @@ std::optional<RunShot> choose_stroke(const problems::Problem& layout, const prob
   const physics::ShotResult r = physics::simulate(scene, cue, best->shot, options.simulation);
   out.cue_to = r.final_position;
   out.path = r.path;
+  out.route = route_of(chosen, r);
+  out.route_words = detail::route_words(chosen, best->shot, r);
   const problems::ShotJudgement j = problems::judge_stroke(state, scene, pot, r);
   out.verdict = j.continues ? "potted" : j.reason;
   out.points = j.points;

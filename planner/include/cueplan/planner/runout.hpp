@@ -9,6 +9,15 @@
 // The `planner` policy plays the stroke of the highest score; `greedy` plays the stroke
 // most likely to pot its ball, with no thought of position.
 //
+// Banks and kicks: when no direct pot is on (none found, or none pots under the noise
+// as often as kFallbackBelow), the legal balls are also tried off the cushions
+// with the kick planner's routes (kick.hpp: the object ball off one or two cushions into
+// its pocket, the cue ball off one or two before it strikes, or both), the cheapest
+// kMostRoutes routes over every legal (ball, pocket), each solved on the simulator; in
+// nine-ball also combinations (the lowest ball struck first, driven onto another that
+// drops). Those strokes are scored the same way (noisy strokes judged by the game,
+// the value of where the cue ball stops), and compete with the direct ones.
+//
 // P(run-out): the policy is played `samples` times from the layout, each noisy stroke
 // simulated and the policy re-planned from where the balls stop, until the run clears,
 // fouls or misses. Deterministic for a seed and thread count (the thread count does not
@@ -57,6 +66,14 @@ double pot_chance_estimate(const physics::Scene& scene, physics::Vec2 cue, const
 PositionValue position_estimate(const physics::Scene& scene, const NoiseModel& noise, int lookahead,
                                 int beam = 4);
 
+// When no direct stroke pots at least this often under the noise (none of its dozen
+// noisy strokes, with the default pot_samples), banks, kicks and combinations are tried
+// too; the routes tried at most, cheapest first. A higher bar (0.15) let a route whose
+// dozen noisy strokes happened to pot more often replace a direct pot that was in fact
+// better (bench/README.md "Run-outs": snooker layout 9 fell from 0.45 to 0.05 balls).
+inline constexpr double kFallbackBelow = 0.05;
+inline constexpr int kMostRoutes = 8;
+
 struct RunoutOptions {
   RunPolicy policy = RunPolicy::planner;
   int lookahead = 2;        // pots scored beyond the one played (>= 1)
@@ -89,6 +106,12 @@ struct RunShot {
                                // report_samples noisy strokes, judged by the game
   double score = 0.0;          // the policy's score: mean position value (planner) or p_pot
   std::string next_ball;       // the ball the position value aims at next (empty at the end)
+  // The route, from the stroke played without noise: "direct", "one-cushion bank",
+  // "one-cushion kick", "one-cushion kick and one-cushion bank", "combination off the 1", ...
+  std::string route = "direct";
+  // The route in a player's words (kick.hpp route_words): "one cushion off the top
+  // cushion, to hit the 1 half ball; the 1 into the bottom middle pocket".
+  std::string route_words;
   std::string verdict;         // without noise: "potted", or why the run ends
   int points = 0;
 };
