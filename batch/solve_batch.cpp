@@ -28,7 +28,7 @@
 #include "cueplan/api/exit_codes.hpp"
 #include "cueplan/api/impact.hpp"
 #include "cueplan/api/options.hpp"
-#include "solve_command.hpp"
+#include "cueplan/api/results.hpp"
 
 namespace cueplan::cli {
 namespace {
@@ -79,7 +79,7 @@ struct BatchSettings {
   bool accuracy_given = false;
 };
 
-std::string read_settings(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+std::string read_settings(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                           BatchSettings* s) {
   phys::SimulationOptions simulation;
   if (std::string why = read_impact_options(args.impact, &simulation); !why.empty()) return why;
@@ -389,7 +389,7 @@ uint64_t problem_seed(uint64_t seed, const std::string& id_json) {
   return mixed(mixed(seed) ^ h);
 }
 
-int validate_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+int validate_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                          std::ostream& err) {
   BatchSettings settings;
   if (std::string why = read_settings(batch, args, accuracy_given, &settings); !why.empty())
@@ -399,7 +399,7 @@ int validate_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, boo
   return kExitOk;
 }
 
-int run_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+int run_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                     std::ostream& out, std::ostream& err) {
   BatchSettings settings;
   if (std::string why = read_settings(batch, args, accuracy_given, &settings); !why.empty())
