@@ -30,7 +30,8 @@
 #include "cueplan/api/options.hpp"
 #include "cueplan/api/results.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 namespace {
 
 namespace phys = cueplan::physics;
@@ -421,4 +422,4 @@ int run_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, 
   return summary.error.empty() && summary.failed == 0 ? kExitOk : kExitFailed;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

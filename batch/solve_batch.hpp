@@ -31,7 +31,8 @@ class App;
 class Option;
 }  // namespace CLI
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 
 // What a batch asks of the planner, whoever reads it (the command line converts its
 // flags into one): the planner's and the impact method's options in the flags' units,
@@ -77,4 +78,4 @@ int validate_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& a
 int run_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                     std::ostream& out, std::ostream& err);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -27,7 +27,8 @@
 #include "cueplan/api/results.hpp"
 #include "cueplan/api/stroke.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 namespace {
 
 using api::InputError;
@@ -687,4 +688,4 @@ ApiReply Api::run(std::string_view body) const {
   });
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

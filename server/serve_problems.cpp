@@ -4,7 +4,8 @@
 
 #include "serve_assets.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 
 namespace prob = cueplan::problems;
 using nlohmann::ordered_json;
@@ -33,4 +34,4 @@ std::vector<Example> shipped_examples(std::string* error) {
   return examples;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

@@ -11,7 +11,8 @@
 #include "cueplan/api/problem_codec.hpp"
 #include "cueplan/problems/problem.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 
 using api::ProblemFromJson;
 using api::RequestError;
@@ -30,4 +31,4 @@ struct Example {
 // Every shipped problem; empty with *error set if one does not load (a build defect).
 std::vector<Example> shipped_examples(std::string* error);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server
