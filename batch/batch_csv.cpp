@@ -24,7 +24,8 @@
 #include "csv.hpp"
 #include "cueplan/api/exit_codes.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 
 std::string trimmed(const std::string& text) {
   const auto first = text.find_first_not_of(" \t\r");
@@ -426,4 +427,4 @@ int run_batch_command(BatchReader& reader, const BatchJob& job, std::ostream& ou
   return summary.error.empty() && summary.failed == 0 ? kExitOk : kExitFailed;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-namespace cueplan::cli {
+namespace cueplan::batch {
 
 // One line of the input file, as read.
 struct BatchRow {
@@ -153,4 +153,4 @@ std::string summary_line(const char* command, const BatchSummary& summary,
 int run_batch_command(BatchReader& reader, const BatchJob& job, std::ostream& out,
                       std::ostream& err);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -10,7 +10,8 @@
 #include "csv.hpp"
 #include "cueplan/api/field_names.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 namespace {
 
 namespace phys = cueplan::physics;
@@ -143,4 +144,4 @@ BatchJob collide_batch_job(const phys::BallBallParams& params,
   return job;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

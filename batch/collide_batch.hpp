@@ -17,7 +17,7 @@
 #include "batch_csv.hpp"
 #include "cueplan/physics/ball_collision.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
 
 inline constexpr const char* kCollideBatchHeader = "speed,cut_deg,topspin_k,sidespin_k";
 inline constexpr const char* kCollideBatchResultHeader =
@@ -70,4 +70,4 @@ std::string flag_message(const physics::ValidationError& error);
 BatchJob collide_batch_job(const physics::BallBallParams& params,
                            const physics::CollisionOptions& options, int threads);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace cueplan::cli {
+namespace cueplan::batch {
 
 std::string format_number(double value) {
   if (std::isnan(value)) return "nan";
@@ -98,4 +98,4 @@ std::string CsvTable::to_string() const {
   return text;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-namespace cueplan::cli {
+namespace cueplan::batch {
 
 // Shortest decimal text that parses back to exactly `value`; "nan", "inf", "-inf"
 // for the non-finite values.
@@ -49,4 +49,4 @@ class CsvTable {
   std::vector<std::vector<std::string>> rows_;
 };
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

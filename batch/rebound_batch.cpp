@@ -7,7 +7,8 @@
 #include "csv.hpp"
 #include "cueplan/api/rebound_inputs.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 namespace {
 
 constexpr size_t kInputColumns = 4;
@@ -104,4 +105,4 @@ BatchJob rebound_batch_job(const physics::CushionParams& params,
   return job;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -12,7 +12,7 @@
 #include "batch_csv.hpp"
 #include "cueplan/physics/cushion_impact.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
 
 // The header an input file starts with (read it with BatchReader).
 inline constexpr const char* kBatchInputHeader = "speed,angle_deg,topspin_k,sidespin_k";
@@ -23,4 +23,4 @@ inline constexpr const char* kBatchInputHeader = "speed,angle_deg,topspin_k,side
 BatchJob rebound_batch_job(const physics::CushionParams& params,
                            const physics::ImpactOptions& options, int threads);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -11,7 +11,8 @@
 #include "csv.hpp"
 #include "cueplan/api/field_names.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 namespace {
 
 namespace phys = cueplan::physics;
@@ -120,4 +121,4 @@ BatchJob shot_batch_job(const problems::Problem& problem, const phys::Simulation
   return job;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -22,7 +22,8 @@
 #include "cueplan/physics/shot.hpp"
 #include "cueplan/problems/problem.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 
 // The header an input file starts with (read it with BatchReader).
 inline constexpr const char* kShotBatchHeader = "speed,aim_deg,topspin_k,sidespin_k";
@@ -37,4 +38,4 @@ inline constexpr const char* kShotBatchResultHeader =
 BatchJob shot_batch_job(const problems::Problem& problem,
                         const physics::SimulationOptions& options, int threads);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

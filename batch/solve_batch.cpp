@@ -28,9 +28,10 @@
 #include "cueplan/api/exit_codes.hpp"
 #include "cueplan/api/impact.hpp"
 #include "cueplan/api/options.hpp"
-#include "solve_command.hpp"
+#include "cueplan/api/results.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 namespace {
 
 namespace phys = cueplan::physics;
@@ -79,7 +80,7 @@ struct BatchSettings {
   bool accuracy_given = false;
 };
 
-std::string read_settings(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+std::string read_settings(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                           BatchSettings* s) {
   phys::SimulationOptions simulation;
   if (std::string why = read_impact_options(args.impact, &simulation); !why.empty()) return why;
@@ -389,7 +390,7 @@ uint64_t problem_seed(uint64_t seed, const std::string& id_json) {
   return mixed(mixed(seed) ^ h);
 }
 
-int validate_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+int validate_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                          std::ostream& err) {
   BatchSettings settings;
   if (std::string why = read_settings(batch, args, accuracy_given, &settings); !why.empty())
@@ -399,7 +400,7 @@ int validate_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, boo
   return kExitOk;
 }
 
-int run_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+int run_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                     std::ostream& out, std::ostream& err) {
   BatchSettings settings;
   if (std::string why = read_settings(batch, args, accuracy_given, &settings); !why.empty())
@@ -421,4 +422,4 @@ int run_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool acc
   return summary.error.empty() && summary.failed == 0 ? kExitOk : kExitFailed;
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -23,14 +23,25 @@
 #include <iosfwd>
 #include <string>
 
+#include "cueplan/api/impact.hpp"
+#include "cueplan/api/options.hpp"
+
 namespace CLI {
 class App;
 class Option;
 }  // namespace CLI
 
-namespace cueplan::cli {
+namespace cueplan::batch {
+using namespace cueplan::api;  // the api's types and checks, as batch streaming's own
 
-struct SolveArgs;  // solve_command.hpp
+// What a batch asks of the planner, whoever reads it (the command line converts its
+// flags into one): the planner's and the impact method's options in the flags' units,
+// and the problems solved at once.
+struct SolveBatchRequest {
+  api::PlannerArgs planner;
+  api::ImpactArgs impact;  // --method, --accuracy, --table-cache
+  int threads = 0;         // problems at once (and a table build's); 0: one per core
+};
 
 struct SolveBatchArgs {
   std::string batch_file;  // --batch FILE.jsonl; "-": standard input
@@ -57,14 +68,14 @@ uint64_t problem_seed(uint64_t seed, const std::string& id_json);
 
 // Checks the flags and that the batch file opens (standard input is not read); returns
 // kExitOk, or kExitUsage with its one line on `err`.
-int validate_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+int validate_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                          std::ostream& err);
 
 // Solves the batch (--threads problems at once, each plan on one thread) and writes its
 // lines to `out`, a summary line on `err` at the end (progress there on a terminal).
 // Returns an ExitCode: 0 when every problem was solved, 1 when any was not or a line was
 // bad, 2 for bad flags or a file that cannot be opened.
-int run_solve_batch(const SolveBatchArgs& batch, const SolveArgs& args, bool accuracy_given,
+int run_solve_batch(const SolveBatchArgs& batch, const SolveBatchRequest& args, bool accuracy_given,
                     std::ostream& out, std::ostream& err);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::batch

@@ -23,11 +23,27 @@
 #include "cueplan/api/field_names.hpp"
 #include "cueplan/api/impact.hpp"
 #include "cueplan/api/options.hpp"
+#include "cueplan/api/request_options.hpp"
 #include "cueplan/api/results.hpp"
 #include "cueplan/api/stroke.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 namespace {
+
+using api::InputError;
+using api::SearchInputs;
+using api::SearchLimits;
+using api::json_number;
+using api::json_whole;
+using api::json_seed;
+using api::json_bool;
+using api::json_text;
+using api::json_at_most;
+using api::check_request_option_keys;
+using api::request_option_names;
+using api::search_simulation;
+using api::search_planner_options;
 
 namespace phys = cueplan::physics;
 namespace plan = cueplan::planner;
@@ -38,55 +54,6 @@ using Clock = std::chrono::steady_clock;
 constexpr int kRetryWhileTableIsMade = 5;  // s
 const int kDefaultGrid = kDefaultSpinmapGrid;
 
-// An option of a request, the command-line flag it stands for, and its JSON type.
-enum class Kind { number, whole, seed, boolean, text };
-struct OptionName {
-  const char* key;   // in the request's `options`
-  const char* flag;  // the command's flag, as its checks name it
-  Kind kind;
-};
-
-// The options `solve` takes (and `spinmap`, whose planner runs without speed and aim).
-constexpr OptionName kPlannerOptions[] = {
-    {"global", "--global", Kind::text},
-    {"local", "--local", Kind::text},
-    {"max_evaluations", "--max-evaluations", Kind::whole},
-    {"max_time", "--max-time", Kind::number},
-    {"starts", "--starts", Kind::whole},
-    {"seed", "--seed", Kind::seed},
-    {"noise", "--noise", Kind::number},
-    {"robust", "--robust", Kind::boolean},
-    {"samples", "--samples", Kind::whole},
-    {"enforce_rigid_limit", "--enforce-rigid-limit", Kind::boolean},
-    {"alternatives", "--alternatives", Kind::whole},
-    {"method", "--method", Kind::text},
-    {"accuracy", "--accuracy", Kind::number},
-};
-// The options `simulate` takes.
-constexpr OptionName kSimulateOptions[] = {
-    {"method", "--method", Kind::text},
-    {"accuracy", "--accuracy", Kind::number},
-    {"max_events", "--max-events", Kind::whole},
-};
-
-// The library's fields as a request names them: what the api's validator names its
-// errors by (cueplan/api/options.hpp).
-const std::initializer_list<FieldName> kOptionNames = {
-    {{"global"}, "options.global"},
-    {{"local"}, "options.local"},
-    {{"max_evaluations"}, "options.max_evaluations"},
-    {{"max_time_s"}, "options.max_time"},
-    {{"local_starts"}, "options.starts"},
-    {{"seed"}, "options.seed"},
-    {{"noise", "scale"}, "options.noise"},
-    {{"robust"}, "options.robust"},
-    {{"robustness_samples"}, "options.samples"},
-    {{"enforce_rigid_limit"}, "options.enforce_rigid_limit"},
-    {{"max_alternatives"}, "options.alternatives"},
-    {{"simulation", "impact_method"}, "options.method"},
-    {{"simulation", "impact_accuracy"}, "options.accuracy"},
-};
-
 // A request that stops short: the reply to send.
 struct Stop {
   ApiReply reply;
@@ -94,12 +61,6 @@ struct Stop {
 
 Stop bad(const std::string& field, const std::string& message) {
   return {error_reply(400, message, field)};
-}
-
-std::string listed(std::span<const OptionName> options) {
-  std::string text;
-  for (const OptionName& o : options) text += (text.empty() ? "" : ", ") + std::string(o.key);
-  return text;
 }
 
 std::string listed(std::initializer_list<const char*> keys) {
@@ -165,13 +126,6 @@ void check_keys(const ordered_json& object, std::initializer_list<const char*> k
                                          " fields are " + listed(keys));
 }
 
-void check_option_keys(const ordered_json& options, std::span<const OptionName> known) {
-  for (const auto& [key, value] : options.items())
-    if (std::none_of(known.begin(), known.end(), [&](const OptionName& o) { return key == o.key; }))
-      throw bad("options." + key,
-                "unknown field 'options." + key + "'; the options are " + listed(known));
-}
-
 // Typed reads of one field; each names the field when the value has the wrong type.
 const ordered_json* member(const ordered_json& object, const char* key) {
   const auto it = object.find(key);
@@ -179,41 +133,13 @@ const ordered_json* member(const ordered_json& object, const char* key) {
 }
 
 double read_number(const ordered_json& v, const std::string& field, const char* unit) {
-  if (!v.is_number())
-    throw bad(field, field + " must be a number" + (unit ? std::string(" (") + unit + ")" : "") +
-                         ", got " + v.dump());
-  return v.get<double>();
+  return json_number(v, field, unit);
 }
-
-int read_whole(const ordered_json& v, const std::string& field) {
-  const double x = v.is_number() ? v.get<double>() : NAN;
-  if (!v.is_number() || x != std::floor(x) || std::abs(x) > std::numeric_limits<int>::max())
-    throw bad(field, field + " must be a whole number (at most 2147483647 either way), got " +
-                         v.dump());
-  return static_cast<int>(x);
-}
-
-uint64_t read_seed(const ordered_json& v, const std::string& field) {
-  if (v.is_number_unsigned()) return v.get<uint64_t>();
-  if (v.is_number_integer() && v.get<int64_t>() >= 0) return static_cast<uint64_t>(v.get<int64_t>());
-  throw bad(field, field + " must be a whole number from 0 to 18446744073709551615, got " + v.dump());
-}
-
-bool read_bool(const ordered_json& v, const std::string& field) {
-  if (!v.is_boolean()) throw bad(field, field + " must be true or false, got " + v.dump());
-  return v.get<bool>();
-}
-
-std::string read_text(const ordered_json& v, const std::string& field) {
-  if (!v.is_string()) throw bad(field, field + " must be a string, got " + v.dump());
-  return v.get<std::string>();
-}
-
-void at_most(int value, int most, const std::string& field) {
-  if (value > most)
-    throw bad(field, field + " must be at most " + std::to_string(most) + " on this server, got " +
-                         std::to_string(value));
-}
+int read_whole(const ordered_json& v, const std::string& field) { return json_whole(v, field); }
+uint64_t read_seed(const ordered_json& v, const std::string& field) { return json_seed(v, field); }
+bool read_bool(const ordered_json& v, const std::string& field) { return json_bool(v, field); }
+std::string read_text(const ordered_json& v, const std::string& field) { return json_text(v, field); }
+void at_most(int value, int most, const std::string& field) { json_at_most(value, most, field); }
 
 const ordered_json& options_of(const ordered_json& request) {
   static const ordered_json kNone = ordered_json::object();
@@ -243,86 +169,33 @@ prob::Problem read_problem(const ordered_json& request) {
   return std::move(*loaded.problem);
 }
 
-// The planner's and the impact method's options of a request, read and checked as the
-// command line reads its flags.
-struct SearchInputs {
-  PlannerArgs planner;
-  ImpactArgs impact;
-  bool accuracy_given = false;
-  bool time_clamped = false;
-};
-
+// The planner's and the impact method's options of a request: the api's reader
+// (cueplan/api/request_options.hpp), under this server's limits.
 SearchInputs read_search_options(const ordered_json& options, const std::string& default_method,
                                  const ApiLimits& limits) {
-  check_option_keys(options, kPlannerOptions);
-  SearchInputs in;
-  in.impact.method = default_method;
-  for (const auto& [key, v] : options.items()) {
-    const std::string field = "options." + key;
-    if (key == "global") in.planner.global = read_text(v, field);
-    if (key == "local") in.planner.local = read_text(v, field);
-    if (key == "max_evaluations") {
-      in.planner.max_evaluations = read_whole(v, field);
-      at_most(in.planner.max_evaluations, limits.max_evaluations, field);
-    }
-    if (key == "max_time") {
-      const double t = read_number(v, field, "s");
-      in.time_clamped = t > limits.max_time_s;
-      in.planner.max_time_s = std::min(t, limits.max_time_s);
-    }
-    if (key == "starts") {
-      in.planner.starts = read_whole(v, field);
-      at_most(in.planner.starts, limits.max_starts, field);
-    }
-    if (key == "seed") in.planner.seed = read_seed(v, field);
-    if (key == "noise") in.planner.noise = read_number(v, field, nullptr);
-    if (key == "robust") in.planner.robust = read_bool(v, field);
-    if (key == "samples") {
-      in.planner.samples = read_whole(v, field);
-      at_most(in.planner.samples, limits.max_samples, field);
-    }
-    if (key == "enforce_rigid_limit") in.planner.enforce_rigid_limit = read_bool(v, field);
-    if (key == "alternatives") {
-      in.planner.alternatives = read_whole(v, field);
-      at_most(in.planner.alternatives, limits.max_alternatives, field);
-    }
-    if (key == "method") in.impact.method = read_text(v, field);
-    if (key == "accuracy") {
-      in.impact.accuracy = read_number(v, field, nullptr);
-      in.accuracy_given = true;
-    }
-  }
-  // The planner's time budget never exceeds the server's.
-  in.planner.max_time_s = std::min(in.planner.max_time_s, limits.max_time_s);
-  return in;
+  const SearchLimits bounds{limits.max_time_s, limits.max_evaluations, limits.max_starts,
+                            limits.max_samples, limits.max_alternatives};
+  return api::read_search_options(options, default_method, bounds);
 }
 
 phys::SimulationOptions read_impact(const ImpactArgs& impact) {
-  phys::SimulationOptions simulation;
-  try {
-    impact_options(impact, kOptionNames, &simulation);
-  } catch (const InputError& e) {
-    throw bad(e.field(), e.what());
-  }
-  return simulation;
+  SearchInputs in;
+  in.impact = impact;
+  return search_simulation(in);
 }
 
 plan::PlannerOptions read_planner(const SearchInputs& in,
                                   const phys::SimulationOptions& simulation) {
   // One thread a request: the server's concurrency is its worker pool. The answer does
   // not depend on it (planner.hpp) while the evaluation budget ends the search.
-  try {
-    return planner_options(in.planner, 1, simulation, kOptionNames);
-  } catch (const InputError& e) {
-    throw bad(e.field(), e.what());
-  }
+  return search_planner_options(in, 1, simulation);
 }
 
 // A library's field (planner options, spin map options, the shot, the problem) as the
 // request names it.
 std::string request_field(const phys::FieldPath& path) {
   // The options', as the request names them.
-  if (const std::string option = name_of(path, kOptionNames); option != path.text()) return option;
+  if (const std::string option = name_of(path, request_option_names()); option != path.text()) return option;
   static const std::initializer_list<FieldName> kNames = {
       {{"max_events"}, "options.max_events"},
       {{"speed"}, "speed"},
@@ -409,6 +282,8 @@ ApiReply answer(Body&& body) {
     return body();
   } catch (const Stop& stop) {
     return stop.reply;
+  } catch (const InputError& e) {  // the api's readers and validator: the field it names
+    return error_reply(400, e.what(), e.field());
   }
 }
 
@@ -470,7 +345,7 @@ ApiReply Api::simulate(std::string_view body) const {
     const ordered_json request = parse_body(body);
     check_keys(request, {"problem", "stroke", "options"}, "");
     const ordered_json& options = options_of(request);
-    check_option_keys(options, kSimulateOptions);
+    check_request_option_keys(options, {"method", "accuracy", "max_events"});
     ImpactArgs impact;
     impact.method = kShotImpactMethod;
     phys::SimulationOptions simulation;
@@ -490,11 +365,7 @@ ApiReply Api::simulate(std::string_view body) const {
       }
     }
     const int max_events = simulation.max_events;
-    try {
-      impact_options(impact, kOptionNames, &simulation);
-    } catch (const InputError& e) {
-      throw bad(e.field(), e.what());
-    }
+    impact_options(impact, request_option_names(), &simulation);
     simulation.max_events = max_events;
 
     const ordered_json* stroke = member(request, "stroke");
@@ -817,4 +688,4 @@ ApiReply Api::run(std::string_view body) const {
   });
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

@@ -34,7 +34,8 @@
 #include "serve_problems.hpp"
 #include "serve_tables.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 
 // What one request may ask for. Beyond a bound a request gets 400 naming the field;
 // max_time is clamped instead (the answer's options.max_time_s says what was used).
@@ -88,4 +89,4 @@ class Api {
   std::vector<Example> examples_;
 };
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

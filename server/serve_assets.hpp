@@ -7,7 +7,7 @@
 #include <span>
 #include <string_view>
 
-namespace cueplan::cli {
+namespace cueplan::server {
 
 struct EmbeddedFile {
   std::string_view name;   // path relative to its directory: "index.html", "one_rail_position.yaml"
@@ -19,4 +19,4 @@ std::span<const EmbeddedFile> web_assets();
 // problems/*.yaml (the one-stroke examples; not problems/routes/), in name order.
 std::span<const EmbeddedFile> shipped_problem_files();
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

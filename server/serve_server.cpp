@@ -25,7 +25,8 @@
 #include "cueplan/physics/parallel.hpp"
 #include "serve_assets.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 namespace {
 
 using nlohmann::ordered_json;
@@ -816,4 +817,4 @@ int WebServer::connection_threads() const { return impl_->connection_threads(); 
 
 ImpactTableStore& WebServer::tables() { return impl_->tables; }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

@@ -23,7 +23,8 @@
 #include "serve_api.hpp"
 #include "serve_tables.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 
 struct ServerOptions {
   std::string host = "127.0.0.1";  // the address to listen on
@@ -72,4 +73,4 @@ class WebServer {
 // True for a name or address of this machine's loopback: localhost, 127.x.y.z, ::1.
 bool is_loopback(const std::string& host);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

@@ -10,7 +10,8 @@
 
 #include "cueplan/api/table_cache.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
+using namespace cueplan::api;  // the api's types and checks, as the server's own
 namespace {
 
 namespace phys = cueplan::physics;
@@ -168,4 +169,4 @@ void ImpactTableStore::run() {
   }
 }
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

@@ -17,7 +17,7 @@
 #include "cueplan/physics/cushion_impact.hpp"
 #include "cueplan/physics/impact_table.hpp"
 
-namespace cueplan::cli {
+namespace cueplan::server {
 
 class ImpactTableStore {
  public:
@@ -80,4 +80,4 @@ class ImpactTableStore {
 
 const char* to_string(ImpactTableStore::State state);
 
-}  // namespace cueplan::cli
+}  // namespace cueplan::server

@@ -15,6 +15,7 @@
 #include "cueplan/api/output_file.hpp"
 
 namespace cueplan::cli {
+using namespace cueplan::batch;  // batch streaming (batch/)
 namespace {
 
 namespace phys = cueplan::physics;

@@ -17,6 +17,7 @@
 #include "cueplan/api/table_cache.hpp"
 
 namespace cueplan::cli {
+using namespace cueplan::batch;  // batch streaming (batch/)
 namespace {
 
 namespace phys = cueplan::physics;

@@ -21,6 +21,7 @@
 #include "cueplan/api/table_cache.hpp"
 
 namespace cueplan::cli {
+using namespace cueplan::server;  // the server (server/)
 namespace {
 
 constexpr const char* kCommandName = "cueplan serve";

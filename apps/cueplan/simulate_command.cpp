@@ -22,6 +22,7 @@
 #include "simulate_batch.hpp"
 
 namespace cueplan::cli {
+using namespace cueplan::batch;  // batch streaming (batch/)
 namespace {
 
 namespace phys = cueplan::physics;

@@ -24,6 +24,7 @@
 #include "cueplan/api/words.hpp"
 
 namespace cueplan::cli {
+using namespace cueplan::batch;  // batch streaming (batch/)
 namespace {
 
 namespace phys = cueplan::physics;
@@ -368,9 +369,18 @@ std::string SolveCommand::read_inputs(Inputs* inputs) const {
   return inputs->loaded.error;
 }
 
+namespace {
+
+// The batch's request from the command's flags.
+SolveBatchRequest batch_request(const SolveArgs& args) {
+  return {args.planner, args.impact, args.threads};
+}
+
+}  // namespace
+
 int SolveCommand::validate(std::ostream& err) const {
   if (command_->count("--batch") > 0)
-    return validate_solve_batch(args_.batch, args_, command_->count("--accuracy") > 0, err);
+    return validate_solve_batch(args_.batch, batch_request(args_), command_->count("--accuracy") > 0, err);
   Inputs inputs;
   const std::string why = read_inputs(&inputs);
   return why.empty() ? kExitOk : usage_error(err, kCommandName, why);
@@ -378,7 +388,7 @@ int SolveCommand::validate(std::ostream& err) const {
 
 int SolveCommand::run(std::ostream& out, std::ostream& err) const {
   if (command_->count("--batch") > 0)
-    return run_solve_batch(args_.batch, args_, command_->count("--accuracy") > 0, out, err);
+    return run_solve_batch(args_.batch, batch_request(args_), command_->count("--accuracy") > 0, out, err);
   const auto started = std::chrono::steady_clock::now();
   const auto usage = [&](const std::string& why) { return usage_error(err, kCommandName, why); };
 

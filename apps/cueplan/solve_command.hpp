@@ -20,6 +20,8 @@ class App;
 
 namespace cueplan::cli {
 
+using batch::SolveBatchArgs;  // solve_batch.hpp
+
 // What the command line asked for, in the flags' units.
 struct SolveArgs {
   std::string problem_file;  // PROBLEM, a YAML problem file

@@ -7,6 +7,9 @@
 #include <vector>
 
 #include "core.hpp"
+#include "cueplan/api/errors.hpp"
+#include "cueplan/api/field_names.hpp"
+#include "cueplan/api/options.hpp"
 #include "cueplan/parallel.hpp"
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/planner/spin_map.hpp"
@@ -57,36 +60,49 @@ struct Options {
   plan::PlannerOptions planner;
 };
 
+// PlannerOptions' fields as the Python keywords name them: how the api's validator
+// names its errors here.
+const std::initializer_list<api::FieldName> kKeywordNames = {
+    {{"global"}, "global_method"},
+    {{"local"}, "local_method"},
+    {{"max_evaluations"}, "max_evaluations"},
+    {{"max_time_s"}, "max_time"},
+    {{"local_starts"}, "starts"},
+    {{"seed"}, "seed"},
+    {{"threads"}, "threads"},
+    {{"noise", "scale"}, "noise"},
+    {{"robust"}, "robust"},
+    {{"robustness_samples"}, "samples"},
+    {{"enforce_rigid_limit"}, "enforce_rigid_limit"},
+    {{"max_alternatives"}, "alternatives"},
+    {{"simulation", "impact_method"}, "method"},
+    {{"simulation", "impact_accuracy"}, "accuracy"},
+    {{"simulation", "max_events"}, "max_events"},
+};
+
+// The keywords checked by the api's one options validator (the command line's and the
+// server's), its typed error raised as InputError with its field.
 Options planner_options(uint64_t seed, int max_evaluations, double max_time, int starts, int samples,
                         double noise, bool robust, int alternatives, const std::string& global_method,
                         const std::string& local_method, bool enforce_rigid_limit, int threads) {
+  api::PlannerArgs args;
+  args.global = global_method;
+  args.local = local_method;
+  args.max_evaluations = max_evaluations;
+  args.max_time_s = max_time;
+  args.starts = starts;
+  args.seed = seed;
+  args.noise = noise;
+  args.robust = robust;
+  args.samples = samples;
+  args.enforce_rigid_limit = enforce_rigid_limit;
+  args.alternatives = alternatives;
   Options o;
-  plan::PlannerOptions& p = o.planner;
-  if (!plan::parse_global_method(global_method, &p.global))
-    throw InputError("global_method must be one of direct_l, crs2, mlsl, isres, ompl_kpiece1, got '" +
-                         global_method + "'",
-                     "global_method");
-  if (!plan::parse_local_method(local_method, &p.local))
-    throw InputError("local_method must be one of bobyqa, sbplx, cobyla, neldermead, got '" + local_method + "'",
-                     "local_method");
-  if (!std::isfinite(max_time) || !(max_time > 0.0))
-    throw InputError(phys::invalid({}, "must be positive and finite (s)", max_time).message("max_time"), "max_time");
-  if (!std::isfinite(noise) || noise < 0.0 || noise > 10.0)
-    throw InputError(phys::invalid({}, "must be 0 to 10 (times a club player's scatter)", noise).message("noise"),
-                     "noise");
-  if (threads < 0)
-    throw InputError(phys::invalid({}, "must be 0 (one per core) or more", threads).message("threads"), "threads");
-  p.seed = seed;
-  p.max_evaluations = max_evaluations;
-  p.max_time_s = max_time;
-  p.local_starts = starts;
-  p.robustness_samples = samples;
-  p.noise.scale = noise;
-  p.robust = robust;
-  p.max_alternatives = alternatives;
-  p.enforce_rigid_limit = enforce_rigid_limit;
-  p.threads = static_cast<int>(thread_count(threads));
-  if (const phys::Validation e = p.validate()) raise_option(*e);
+  try {
+    o.planner = api::planner_options(args, threads, phys::SimulationOptions{}, kKeywordNames);
+  } catch (const api::InputError& e) {
+    throw InputError(e.what(), e.field());
+  }
   return o;
 }
 

@@ -11,6 +11,7 @@
 #include "cueplan/api/output_file.hpp"
 
 namespace cueplan::cli {
+using namespace cueplan::batch;  // csv.hpp
 namespace {
 
 TEST(Csv, NumbersReadBackExactly) {

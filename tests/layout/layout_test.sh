@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The code's layout (issue 26): the command line (apps/cueplan) stays a thin face over
 # the api - at most 25 % of the project's C++ lines - and no face includes another
-# face's files (the server none of apps/cueplan's). Prints the line counts it checks.
+# face's files (the server, batch streaming and Python none of apps/cueplan's). Prints the line counts it checks.
 # Usage: layout_test.sh ROOT
 set -euo pipefail
 root="${1:?usage: layout_test.sh ROOT}"
@@ -21,14 +21,32 @@ if [ $((4 * apps)) -gt "$total" ]; then
   echo "FAIL: apps/ holds more than 25 % of the code lines"
   status=1
 fi
-# The server's files include only its own headers and the libraries' (cueplan/...).
-for f in server/*.cpp server/*.hpp; do
-  for h in $(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f"); do
-    case "$h" in
-      cueplan/*) ;;
-      *) [ -e "server/$h" ] || { echo "FAIL: $f includes $h, not a server file"; status=1; } ;;
-    esac
+# The server's, batch streaming's and Python's files include only their own headers and
+# the libraries' (cueplan/...): never a file of apps/ (the command line), nor of another
+# face.
+for dir in server batch python/src; do
+  for f in "$dir"/*.cpp "$dir"/*.hpp; do
+    for h in $(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f"); do
+      case "$h" in
+        cueplan/*) ;;
+        *) [ -e "$dir/$h" ] || { echo "FAIL: $f includes $h, not a file of $dir/"; status=1; } ;;
+      esac
+      case "$h" in
+        *apps/*|*../*) echo "FAIL: $f includes $h, outside its face"; status=1 ;;
+      esac
+      if [ -e "apps/cueplan/$(basename "$h")" ] && [ ! -e "$dir/$h" ]; then
+        echo "FAIL: $f includes $h, a file of apps/cueplan"
+        status=1
+      fi
+    done
   done
+done
+# Batch streaming and the server build without the command line's library.
+for f in batch/CMakeLists.txt server/CMakeLists.txt python/CMakeLists.txt; do
+  if grep -n 'cueplan_cli' "$f"; then
+    echo "FAIL: $f links cueplan_cli, the command line's library"
+    status=1
+  fi
 done
 # The api includes no face: nothing outside cueplan/...
 if grep -rn '#include "[^c][^u]' api/ >/dev/null; then

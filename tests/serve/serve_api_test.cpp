@@ -51,11 +51,11 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace prob = cueplan::problems;
-using cueplan::cli::Api;
-using cueplan::cli::ApiReply;
-using cueplan::cli::ImpactTableStore;
-using cueplan::cli::ServerOptions;
-using cueplan::cli::WebServer;
+using cueplan::server::Api;
+using cueplan::server::ApiReply;
+using cueplan::server::ImpactTableStore;
+using cueplan::server::ServerOptions;
+using cueplan::server::WebServer;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
@@ -269,8 +269,8 @@ TEST(ServeExamples, AreTheShippedProblemsAndLoadAsTheirFilesDo) {
     const prob::LoadResult from_file =
         prob::load_problem((fs::path(CUEPLAN_PROBLEMS_DIR) / file).string());
     ASSERT_TRUE(from_file.ok()) << from_file.error;
-    const cueplan::cli::ProblemFromJson from_json =
-        cueplan::cli::problem_from_json(problem_fields, "problem");
+    const cueplan::server::ProblemFromJson from_json =
+        cueplan::server::problem_from_json(problem_fields, "problem");
     ASSERT_TRUE(from_json.problem) << from_json.error.message;
     expect_same_problem(*from_json.problem, *from_file.problem);
     EXPECT_EQ(e["name"], from_file.problem->name);
@@ -1101,8 +1101,8 @@ TEST(ServeMethods, AWrongMethodIs405WithAllow) {
 struct TableApi {
   explicit TableApi(size_t max_tables = 8) : store(settings(max_tables)) {
     std::string error;
-    api = std::make_unique<Api>(cueplan::cli::ApiLimits{}, "table", &store,
-                                cueplan::cli::shipped_examples(&error));
+    api = std::make_unique<Api>(cueplan::server::ApiLimits{}, "table", &store,
+                                cueplan::server::shipped_examples(&error));
     EXPECT_EQ(error, "");
   }
   static ImpactTableStore::Settings settings(size_t max_tables) {
