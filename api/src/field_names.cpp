@@ -9,6 +9,7 @@ const std::initializer_list<FieldName> kCushionFlags = {
     {{"mu_cushion"}, "--mu-cushion"},
     {{"mu_table"}, "--mu-table"},
     {{"restitution"}, "--restitution"},
+    {{"eta_squared"}, "--eta-squared"},
     {{"model"}, "--cushion-model"},
     {{"paper_steps"}, "--steps"},
     {{"tolerance"}, "--tolerance"},

@@ -71,7 +71,9 @@ void write_text(std::ostream& out, const phys::CushionParams& params, const Inci
   line("impulse", "compression " + number(r.impulse_compression, "N s") + ", total " +
                       number(r.impulse_total, "N s"));
   if (r.method_used == phys::ImpactMethod::closed_form)
-    line("work", "none (Newton's restitution: the model has no work integral)");
+    line("work", r.model == phys::CushionModel::stronge_compliant
+                     ? "none (Newton's restitution and a tangential spring: no work integral)"
+                     : "none (Newton's restitution: the model has no work integral)");
   else
     line("work",
          "compression " + number(r.work_compression, "J") + ", total " + number(r.work_total, "J"));
@@ -166,8 +168,9 @@ namespace {
 ReboundCommand::ReboundCommand(CLI::App& parent) {
   command_ = parent.add_subcommand(
       "rebound",
-      "Resolve a ball-cushion impact (Mathavan, Jackson & Parkin 2010, or Han 2005 with "
-      "--cushion-model han_2005) and print the outgoing velocity and spin.");
+      "Resolve a ball-cushion impact (Mathavan, Jackson & Parkin 2010; Han 2005 with "
+      "--cushion-model han_2005; a Stronge compliant cushion with --cushion-model "
+      "stronge_compliant) and print the outgoing velocity and spin.");
   CLI::App& c = *command_;
   const phys::CushionParams snooker;
 
@@ -188,8 +191,11 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
                "mathavan_2010 (friction at the cushion and the cloth over the impulse; the "
                "methods below solve it) or han_2005 (Han's closed form: one impulse with "
                "Newton's restitution --restitution and Coulomb friction --mu-cushion; "
-               "--method, --steps and --tolerance play no part). docs/cushion_models.md")
-      ->type_name("mathavan_2010|han_2005")
+               "--method, --steps and --tolerance play no part) or stronge_compliant (Han's "
+               "normal impulse with a tangential spring at the contact, stiffness ratio "
+               "--eta-squared: the slip can stick and reverse; also a closed form). "
+               "docs/cushion_models.md")
+      ->type_name("mathavan_2010|han_2005|stronge_compliant")
       ->capture_default_str()
       ->group(method);
   c.add_option("--method", args_.method,
@@ -245,6 +251,12 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
   c.add_option("--restitution", args_.params.restitution,
                "Energetic coefficient of restitution e_e, in (0, 1]")
       ->type_name("e_e")
+      ->capture_default_str()
+      ->group(physical);
+  c.add_option("--eta-squared", args_.params.eta_squared,
+               "stronge_compliant only: the cushion contact's normal over tangential "
+               "stiffness, in (0.875, 3.5)")
+      ->type_name("eta^2")
       ->capture_default_str()
       ->group(physical);
 
@@ -308,11 +320,8 @@ std::string ReboundCommand::read_options(phys::ImpactOptions* options) const {
 
 std::string ReboundCommand::read_params(phys::CushionParams* params) const {
   *params = args_.params;
-  if (args_.cushion_model == "stronge_compliant")
-    return "--cushion-model stronge_compliant is not implemented; choose mathavan_2010 or "
-           "han_2005";
   if (!phys::parse_cushion_model(args_.cushion_model, &params->model))
-    return "--cushion-model must be one of mathavan_2010, han_2005, got '" +
+    return "--cushion-model must be one of mathavan_2010, han_2005, stronge_compliant, got '" +
            args_.cushion_model + "'";
   // The cushion height follows the radius unless given.
   if (!given("--cushion-height"))
@@ -376,7 +385,7 @@ int ReboundCommand::run(std::ostream& out, std::ostream& err) const {
 
   // The surrogate, built or loaded once for every impact of this run.
   std::optional<phys::ImpactTable> table;
-  // (The table is the Mathavan model's: a han_2005 impact is a closed form.)
+  // (The table is the Mathavan model's: han_2005 and stronge_compliant are closed forms.)
   if (options.method == phys::ImpactMethod::table &&
       params.model == phys::CushionModel::mathavan_2010) {
     const std::string cache_dir =

@@ -128,6 +128,37 @@ TEST(Rebound, HanModelJsonEqualsTheLibraryResult) {
   EXPECT_EQ(json::parse(mathavan.out).at("cushion_model"), "mathavan_2010");
 }
 
+TEST(Rebound, StrongeModelJsonEqualsTheLibraryResult) {
+  const ProcessResult run = cueplan(
+      "rebound --speed 1.4 --angle 60 --topspin-k 0.5 --sidespin-k -0.8 --cushion-model "
+      "stronge_compliant --eta-squared 2.2 --restitution 0.93 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json j = json::parse(run.out);
+  phys::CushionParams params;
+  params.model = phys::CushionModel::stronge_compliant;
+  params.eta_squared = 2.2;
+  params.restitution = 0.93;
+  const phys::ImpactResult expected = phys::resolve_impact(
+      params, phys::incoming_state_k(1.4, 60.0, 0.5, -0.8, params.radius));
+  ASSERT_EQ(expected.status, phys::ImpactStatus::ok);
+  EXPECT_EQ(j.at("cushion_model"), "stronge_compliant");
+  EXPECT_EQ(j.at("method"), "closed_form");
+  EXPECT_NEAR(j["velocity"][0].get<double>(), expected.outgoing.velocity.x, 1e-12);
+  EXPECT_NEAR(j["velocity"][1].get<double>(), expected.outgoing.velocity.y, 1e-12);
+  EXPECT_NEAR(j["spin"][2].get<double>(), expected.outgoing.spin.z, 1e-9);
+  // eta_squared reaches the model: near the perpendicular the slip sticks and reverses,
+  // and another stiffness ratio gives another rebound (in gross slip, as above, it cannot).
+  const auto near_perpendicular = [](const char* eta) {
+    const ProcessResult r = cueplan(std::string("rebound --speed 1 --angle 80 --topspin-k 0 --sidespin-k 0.3 "
+                                                "--cushion-model stronge_compliant --json --eta-squared ") + eta);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return json::parse(r.out);
+  };
+  EXPECT_GT(std::fabs(near_perpendicular("1.2")["velocity"][0].get<double>() -
+                      near_perpendicular("3.2")["velocity"][0].get<double>()),
+            1e-3);
+}
+
 // Every flag reaches the library: paper method, rad/s spins, a pool ball with its own
 // mass, radius (cushion height following at 7R/5) and friction.
 TEST(Rebound, FlagsReachTheLibrary) {
@@ -240,9 +271,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"UnknownMethod", "rebound --speed 1 --angle 45 --method magic", "--method"},
         BadInput{"UnknownCushionModel", "rebound --speed 1 --angle 45 --cushion-model han",
                  "--cushion-model"},
-        BadInput{"StrongeCushionModel",
-                 "rebound --speed 1 --angle 45 --cushion-model stronge_compliant",
-                 "--cushion-model stronge_compliant is not implemented"},
+        BadInput{"StrongeEtaSquaredOutOfRange",
+                 "rebound --speed 1 --angle 45 --cushion-model stronge_compliant --eta-squared 5",
+                 "--eta-squared"},
         BadInput{"HanRestitutionTooLow",
                  "rebound --speed 1 --angle 45 --cushion-model han_2005 --restitution 0.1",
                  "--restitution"},
