@@ -1,5 +1,7 @@
 #include "rebound_command.hpp"
 
+#include "flag_table.hpp"
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
@@ -225,40 +227,23 @@ ReboundCommand::ReboundCommand(CLI::App& parent) {
 
   // Physical parameters bind straight into CushionParams: its defaults are the help's.
   const char* physical = "Physical parameters (snooker defaults, from the paper)";
-  c.add_option("--mass", args_.params.mass, "Ball mass M (kg), > 0")
-      ->type_name("kg")
-      ->capture_default_str()
-      ->group(physical);
-  c.add_option("--radius", args_.params.radius, "Ball radius R (m), > 0")
-      ->type_name("m")
-      ->capture_default_str()
-      ->group(physical);
-  c.add_option("--cushion-height", args_.params.cushion_height,
-               "Height h of the cushion contact above the cloth (m), in (R, 2R); default 7R/5 "
-               "of the radius in use (" +
-                   number(snooker.cushion_height) + " for the default radius)")
-      ->type_name("m")
-      ->group(physical);
-  c.add_option("--mu-cushion", args_.params.mu_cushion,
-               "Ball-cushion sliding friction mu_w, >= 0 and below tan(theta)")
-      ->type_name("mu_w")
-      ->capture_default_str()
-      ->group(physical);
-  c.add_option("--mu-table", args_.params.mu_table, "Ball-cloth sliding friction mu_s, >= 0")
-      ->type_name("mu_s")
-      ->capture_default_str()
-      ->group(physical);
-  c.add_option("--restitution", args_.params.restitution,
-               "Energetic coefficient of restitution e_e, in (0, 1]")
-      ->type_name("e_e")
-      ->capture_default_str()
-      ->group(physical);
-  c.add_option("--eta-squared", args_.params.eta_squared,
-               "stronge_compliant only: the cushion contact's normal over tangential "
-               "stiffness, in (0.875, 3.5)")
-      ->type_name("eta^2")
-      ->capture_default_str()
-      ->group(physical);
+  using P = Flag<phys::CushionParams>;
+  register_flags<phys::CushionParams>(c, &args_.params, {
+      P{"--mass", &phys::CushionParams::mass, "kg", "Ball mass M (kg), > 0"},
+      P{"--radius", &phys::CushionParams::radius, "m", "Ball radius R (m), > 0"},
+      P{"--cushion-height", &phys::CushionParams::cushion_height, "m",
+        "Height h of the cushion contact above the cloth (m), in (R, 2R); default 7R/5 "
+        "of the radius in use (" + number(snooker.cushion_height) + " for the default radius)",
+        false},
+      P{"--mu-cushion", &phys::CushionParams::mu_cushion, "mu_w",
+        "Ball-cushion sliding friction mu_w, >= 0 and below tan(theta)"},
+      P{"--mu-table", &phys::CushionParams::mu_table, "mu_s", "Ball-cloth sliding friction mu_s, >= 0"},
+      P{"--restitution", &phys::CushionParams::restitution, "e_e",
+        "Energetic coefficient of restitution e_e, in (0, 1]"},
+      P{"--eta-squared", &phys::CushionParams::eta_squared, "eta^2",
+        "stronge_compliant only: the cushion contact's normal over tangential "
+        "stiffness, in (0.875, 3.5)"},
+  }, physical);
 
   const char* output = "Output";
   auto* json = c.add_flag("--json", args_.json,
