@@ -806,7 +806,9 @@ function renderRun() {
     const link = document.createElement("button");
     link.type = "button";
     link.className = "link";
-    link.textContent = `${s.ball} into ${pocketWords(s.pocket)}`;
+    // A bank, kick or combination is named; a direct pot is not.
+    link.textContent = `${s.ball} into ${pocketWords(s.pocket)}` +
+      (s.route && s.route !== "direct" ? ` (${s.route})` : "");
     link.disabled = !s.simulation;
     link.onclick = () => {
       state.run.step = i + 1;
