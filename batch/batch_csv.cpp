@@ -205,18 +205,37 @@ void append_row(const BatchRow& row, size_t input_columns, const BatchOutcome& o
   out += '\n';
 }
 
-// Parses, computes and formats one chunk (on the calling thread).
-void process_chunk(const BatchChunk& chunk, const BatchJob& job, ChunkResult* result) {
-  std::vector<BatchRow> rows(chunk.lines.size());
+// A worker's rows and outcomes, kept from chunk to chunk so that their memory is reused:
+// a chunk's worth allocated and freed each time makes the allocator hand memory back to
+// the system and fault it in again, which cost a second thread most of its gain.
+struct ChunkScratch {
+  std::vector<BatchRow> rows;
+  std::vector<BatchOutcome> outcomes;
+};
+
+// Parses, computes and formats one chunk (on the calling thread), into result->text
+// (whose memory is reused).
+void process_chunk(const BatchChunk& chunk, const BatchJob& job, ChunkScratch& scratch,
+                   ChunkResult* result) {
+  std::vector<BatchRow>& rows = scratch.rows;
+  rows.resize(chunk.lines.size());
   for (size_t i = 0; i < rows.size(); ++i) {
     const BatchChunk::Line& line = chunk.lines[i];
     rows[i].line = line.number;
     rows[i].fields = split_csv_line(std::string_view(chunk.text).substr(line.begin, line.size));
   }
-  std::vector<BatchOutcome> outcomes(rows.size());
+  std::vector<BatchOutcome>& outcomes = scratch.outcomes;
+  outcomes.resize(rows.size());
+  for (BatchOutcome& outcome : outcomes) {
+    outcome.status.clear();
+    outcome.message.clear();
+    outcome.results.clear();
+    outcome.after_message.clear();
+  }
   job.compute(rows, outcomes);
   result->text.clear();
   result->text.reserve(chunk.text.size() * 4);
+  result->by_status.clear();
   result->rows = rows.size();
   for (size_t i = 0; i < rows.size(); ++i) {
     ++result->by_status[outcomes[i].status];
@@ -290,14 +309,14 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
     // Everything on this thread, in turn.
     BatchChunk chunk;
     ChunkResult result;
+    ChunkScratch scratch;
     for (;;) {
       double start = thread_cpu_seconds();
       const bool more = reader.read_chunk(rows_per_chunk, &chunk);
       times.read += thread_cpu_seconds() - start;
       if (!more) break;
       start = thread_cpu_seconds();
-      result.by_status.clear();
-      process_chunk(chunk, job, &result);
+      process_chunk(chunk, job, scratch, &result);
       times.work += thread_cpu_seconds() - start;
       if (!writer.write(result)) {
         broke_off = true;
@@ -316,19 +335,28 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
     bool read_all = false;
     bool writing = false;
     std::vector<double> work_seconds(threads, 0.0);
+    // Chunks' buffers that have been read and written, kept for the next chunks (their
+    // memory reused rather than freed and allocated again).
+    std::vector<BatchChunk> spare_inputs;
+    std::vector<ChunkResult> spare_outputs;
 
     const auto work = [&](unsigned t) {
+      ChunkScratch scratch;
       std::unique_lock lock(mutex);
       for (;;) {
         changed.wait(lock, [&] { return next < first + slots.size() || read_all || broke_off; });
         if (broke_off || next >= first + slots.size()) return;  // nothing left to start
         Slot& slot = slots[next++ - first];
+        if (!spare_outputs.empty()) {
+          slot.output = std::move(spare_outputs.back());
+          spare_outputs.pop_back();
+        }
         lock.unlock();
         const double start = thread_cpu_seconds();
-        process_chunk(slot.input, job, &slot.output);
-        slot.input = {};
+        process_chunk(slot.input, job, scratch, &slot.output);
         work_seconds[t] += thread_cpu_seconds() - start;
         lock.lock();
+        spare_inputs.push_back(std::move(slot.input));
         slot.finished = true;
         if (writing) continue;  // the writer will find it
         writing = true;
@@ -340,6 +368,7 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
           lock.unlock();
           const bool ok = writer.write(done);
           lock.lock();
+          spare_outputs.push_back(std::move(done));
           if (!ok) broke_off = true;
         }
         writing = false;
@@ -355,6 +384,10 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
     for (;;) {
       changed.wait(lock, [&] { return slots.size() < most_held || broke_off; });
       if (broke_off) break;
+      if (!spare_inputs.empty()) {
+        chunk = std::move(spare_inputs.back());
+        spare_inputs.pop_back();
+      }
       lock.unlock();
       const double start = thread_cpu_seconds();
       const bool more = reader.read_chunk(rows_per_chunk, &chunk);
@@ -362,7 +395,7 @@ BatchSummary run_batch(BatchReader& reader, const BatchJob& job, std::ostream& o
       lock.lock();
       if (!more) break;
       slots.emplace_back().input = std::move(chunk);
-      chunk = {};
+      chunk = {};  // a spare one's buffers are taken above when there is one
       changed.notify_all();
     }
     read_all = true;
