@@ -1211,8 +1211,52 @@ physics::Validation PlannerOptions::validate() const {
   return {};
 }
 
+namespace {
+
+// The problem with its speed and spin limits brought within the default ones (a limit
+// wider than the default narrowed to it); the same problem when they are not wider.
+problems::Problem within_default_limits(const problems::Problem& problem) {
+  const problems::Limits defaults;
+  problems::Problem narrow = problem;
+  problems::Limits& l = narrow.limits;
+  l.speed_min = std::max(l.speed_min, defaults.speed_min);
+  l.speed_max = std::min(l.speed_max, defaults.speed_max);
+  l.spin_max = std::min(l.spin_max, defaults.spin_max);
+  return narrow;
+}
+
+bool wider_than_default(const problems::Limits& limits, const problems::Limits& narrow) {
+  return limits.speed_min != narrow.speed_min || limits.speed_max != narrow.speed_max ||
+         limits.spin_max != narrow.spin_max;
+}
+
+}  // namespace
+
 PlanResult plan(const problems::Problem& problem, const PlannerOptions& options) {
-  return Planning(problem, options).run();
+  PlanResult wide = Planning(problem, options).run();
+  // A wider limit must never answer worse than the default one: where the speed or spin
+  // limit goes beyond the default, the problem is also planned within the default limits
+  // (same options and seed), and that answer is kept unless the wide search found a
+  // stroke that succeeds more often. Its strokes lie within the wider limits too.
+  const problems::Problem narrow = within_default_limits(problem);
+  if (wide.status == PlanStatus::invalid_input || !wider_than_default(problem.limits, narrow.limits) ||
+      !(narrow.limits.speed_min < narrow.limits.speed_max))
+    return wide;
+  PlanResult inner = Planning(narrow, options).run();
+  if (inner.status != PlanStatus::solved) {
+    wide.evaluations += inner.evaluations;
+    wide.time_s += inner.time_s;
+    return wide;
+  }
+  const bool keep_inner = wide.status != PlanStatus::solved ||
+                          inner.best.success_probability >= wide.best.success_probability;
+  PlanResult& kept = keep_inner ? inner : wide;
+  const PlanResult& other = keep_inner ? wide : inner;
+  kept.evaluations += other.evaluations;
+  kept.time_s += other.time_s;
+  kept.local_searches += other.local_searches;
+  kept.converged_searches += other.converged_searches;
+  return std::move(kept);
 }
 
 }  // namespace cueplan::planner

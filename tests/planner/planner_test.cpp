@@ -273,6 +273,31 @@ TEST(RankingTest, TheSameFamilyWhateverTheSeed) {
   }
 }
 
+// A wider limit never answers worse (issue 31): with the speed limit raised from the
+// default 4.5 m/s to 7 m/s, these pots' answers used to lose success (only_draw 3.5 % ->
+// 0 % at 5.8 m/s, pool_two_ball_position 78 % -> 60 %, two_cushion_position 3.5 % ->
+// 0.5 %); the wide plan now succeeds at least as often as the default one, and its
+// stroke keeps within the wide limits.
+TEST(RankingTest, AWiderSpeedLimitNeverAnswersWorse) {
+  for (const char* file : {"pots/only_draw.yaml", "pots/pool_two_ball_position.yaml",
+                           "pots/two_cushion_position.yaml"}) {
+    SCOPED_TRACE(file);
+    const problems::Problem p = shipped(file);
+    ASSERT_EQ(p.limits.speed_max, problems::Limits{}.speed_max);
+    problems::Problem wide = p;
+    wide.limits.speed_max = 7.0;
+    const PlannerOptions o = exact_options();
+    const PlanResult narrow_plan = plan(p, o);
+    const PlanResult wide_plan = plan(wide, o);
+    ASSERT_EQ(narrow_plan.status, PlanStatus::solved) << narrow_plan.message;
+    ASSERT_EQ(wide_plan.status, PlanStatus::solved) << wide_plan.message;
+    EXPECT_GE(wide_plan.best.success_probability, narrow_plan.best.success_probability);
+    EXPECT_LE(wide_plan.best.shot.speed, 7.0);
+    EXPECT_EQ(problems::check_shot(wide.limits, wide_plan.best.shot), "");
+    EXPECT_GE(wide_plan.evaluations, narrow_plan.evaluations);  // both searches counted
+  }
+}
+
 // Every reported stroke's success is what an independent estimate on the same draws
 // gives (the first `samples` draws of kReferenceSeed, whatever the seed), P(success) is success.both.p, and the
 // answer's interval is not below any alternative's.
