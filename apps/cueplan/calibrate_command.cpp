@@ -73,6 +73,10 @@ CalibrateCommand::CalibrateCommand(CLI::App& parent) {
                "Start from this physics: block instead of the carom preset's constants")
       ->type_name("FILE");
   c.add_option("--threads", args_.threads, "Threads (0: one per core)")->capture_default_str();
+  c.add_flag("--keep-mu-roll", args_.keep_mu_roll,
+             "Start mu_roll's search from the starting constants' value, not from the "
+             "rolling resistance measured on the training shots' final straight rolls");
+  add_stroke_search_flags(c, &args_.search);
 }
 
 bool CalibrateCommand::selected() const { return command_->parsed(); }
@@ -84,6 +88,8 @@ int CalibrateCommand::validate(std::ostream& err) const {
   if (args_.refit_evaluations < 0)
     return usage_error(err, kCommandName, "--refit-evaluations must be >= 0");
   if (args_.threads < 0) return usage_error(err, kCommandName, "--threads must be >= 0");
+  if (std::string why = check_stroke_search(args_.search); !why.empty())
+    return usage_error(err, kCommandName, why);
   if (!args_.out_file.empty())
     if (std::string why = check_output_file(args_.out_file); !why.empty())
       return usage_error(err, kCommandName, "--out: " + why);
@@ -107,6 +113,8 @@ int CalibrateCommand::run(std::ostream& out, std::ostream& err) const {
   o.constant_evaluations = args_.evaluations;
   o.refit_evaluations = args_.refit_evaluations;
   o.threads = args_.threads;
+  apply_stroke_search(args_.search, &o.fit);
+  o.measure_rolling = !args_.keep_mu_roll;
   const plan::CalibrationResult r = plan::calibrate(
       shots, table, o, [&err](const std::string& line) { err << kCommandName << ": " << line << '\n'; });
 
@@ -123,6 +131,17 @@ int CalibrateCommand::run(std::ostream& out, std::ostream& err) const {
     const plan::ConstantReport& c = r.report[i];
     out << fmt::format("{:<18} {:>11.5g} {:>11.5g} {:>12.3g} {:>12.3g}  {}\n", c.name, start[i],
                        c.value, c.fold_spread, c.half_width, c.constrained ? "yes" : "no (flat)");
+  }
+  if (!r.measured_mu_roll.empty()) {
+    // The start of mu_roll's search: the final rolls of each fold's training shots, then
+    // of all shots.
+    out << "\nrolling resistance from final rolls (mu_roll's start):";
+    for (size_t i = 0; i < r.measured_mu_roll.size(); ++i)
+      out << fmt::format(" {}{:.5g} ({} rolls)",
+                         i + 1 < r.measured_mu_roll.size() ? fmt::format("fold {}: ", i + 1)
+                                                             : std::string("all shots: "),
+                         r.measured_mu_roll[i], r.measured_rolls[i]);
+    out << "\n";
   }
   out << "\nper shot (cm): id fold before held_out all_shots\n";
   for (size_t i = 0; i < r.ids.size(); ++i)

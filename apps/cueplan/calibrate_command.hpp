@@ -6,6 +6,8 @@
 #include <iosfwd>
 #include <string>
 
+#include "fit_command.hpp"
+
 namespace CLI {
 class App;
 }
@@ -21,6 +23,8 @@ struct CalibrateArgs {
   std::string out_file;
   std::string physics_file;
   int threads = 0;
+  StrokeSearchArgs search;
+  bool keep_mu_roll = false;
 };
 
 class CalibrateCommand {

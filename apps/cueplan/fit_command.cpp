@@ -139,6 +139,57 @@ ordered_json physics_json(const phys::Scene& s) {
   return j;
 }
 
+void add_stroke_search_flags(CLI::App& c, StrokeSearchArgs* a) {
+  c.add_option("--max-elevation", a->max_elevation_deg,
+               "Put the cue's elevation into the stroke search, in [0, DEG] (swerve); 0 keeps "
+               "the cue level")
+      ->type_name("DEG")
+      ->capture_default_str();
+  c.add_option("--spin-starts", a->spin_starts,
+               "Restarts of the local search with the spins reset round the spin circle (more: "
+               "fewer shots caught in a wrong spin's minimum, longer fits)")
+      ->capture_default_str();
+  c.add_option("--global-evaluations", a->global_evaluations,
+               "Simulations of each of the two global stages (CRS2) of a stroke's search")
+      ->capture_default_str();
+  c.add_option("--local-evaluations", a->local_evaluations,
+               "Simulations of the local stages (BOBYQA) of a stroke's search")
+      ->capture_default_str();
+  c.add_option("--restarts", a->restarts,
+               "Whole searches per stroke, each with its own random draws; the best is kept "
+               "(more: fewer shots caught in a wrong minimum, proportionally longer fits)")
+      ->capture_default_str();
+  c.add_option("--huber-delta", a->huber_delta,
+               "Residuals beyond this distance (m) count linearly in the objective, so that "
+               "a few tracking glitches do not drag the fit")
+      ->type_name("M")
+      ->capture_default_str();
+}
+
+std::string check_stroke_search(const StrokeSearchArgs& a) {
+  if (!std::isfinite(a.max_elevation_deg) || a.max_elevation_deg < 0.0 ||
+      a.max_elevation_deg > 60.0)
+    return "--max-elevation must be in [0, 60] deg";
+  if (a.spin_starts < 0 || a.spin_starts > 1000) return "--spin-starts must be in [0, 1000]";
+  if (a.global_evaluations < 10 || a.global_evaluations > 1000000)
+    return "--global-evaluations must be in [10, 1000000]";
+  if (a.local_evaluations < 10 || a.local_evaluations > 1000000)
+    return "--local-evaluations must be in [10, 1000000]";
+  if (a.restarts < 1 || a.restarts > 100) return "--restarts must be in [1, 100]";
+  if (!std::isfinite(a.huber_delta) || a.huber_delta <= 0.0 || a.huber_delta > 10.0)
+    return "--huber-delta must be in (0, 10] m";
+  return {};
+}
+
+void apply_stroke_search(const StrokeSearchArgs& a, plan::FitOptions* o) {
+  o->max_elevation_deg = a.max_elevation_deg;
+  o->spin_starts = a.spin_starts;
+  o->global_evaluations = a.global_evaluations;
+  o->local_evaluations = a.local_evaluations;
+  o->huber_delta = a.huber_delta;
+  o->restarts = a.restarts;
+}
+
 std::vector<plan::ShotData> read_tracks(const std::string& path, const phys::Scene& table,
                                         const plan::TrackFrame& frame, const std::string& command,
                                         std::ostream& err, int* bad) {
@@ -198,6 +249,7 @@ FitCommand::FitCommand(CLI::App& parent) {
                "`cueplan calibrate --out`) applied to the carom table")
       ->type_name("FILE");
   c.add_option("--threads", args_.threads, "Threads (0: one per core)")->capture_default_str();
+  add_stroke_search_flags(c, &args_.search);
 }
 
 bool FitCommand::selected() const { return command_->parsed(); }
@@ -207,6 +259,8 @@ int FitCommand::validate(std::ostream& err) const {
   if (std::string why = carom_table(args_.physics_file, &scene); !why.empty())
     return usage_error(err, kCommandName, why);
   if (args_.threads < 0) return usage_error(err, kCommandName, "--threads must be >= 0");
+  if (std::string why = check_stroke_search(args_.search); !why.empty())
+    return usage_error(err, kCommandName, why);
   return kExitOk;
 }
 
@@ -226,6 +280,7 @@ int FitCommand::run(std::ostream& out, std::ostream& err) const {
 
   plan::FitOptions options;
   options.all_balls = args_.all_balls;
+  apply_stroke_search(args_.search, &options);
   struct Outcome {
     plan::StrokeFit before, after;
     double seconds = 0;
@@ -280,6 +335,7 @@ int FitCommand::run(std::ostream& out, std::ostream& err) const {
       // The first guess's error and the fit's time, beside the stroke.
       j["shot"]["first_guess_rmse_cue_m"] = o.before.rmse_cue_m;
       j["shot"]["fit_seconds"] = o.seconds;
+      j["shot"]["simulations"] = o.after.evaluations;
       j["physics"] = physics_json(d.scene);
       j["rmse_cue_m"] = o.after.rmse_cue_m;
       j["rmse_all_m"] = o.after.rmse_all_m;

@@ -31,6 +31,23 @@ std::string carom_table(const std::string& physics_file, physics::Scene* scene);
 // The physics: block of a scene's constants, as problem files and --physics take it.
 nlohmann::ordered_json physics_json(const physics::Scene& scene);
 
+// The stroke search's flags, shared by `fit` and `calibrate` (planner::FitOptions).
+struct StrokeSearchArgs {
+  double max_elevation_deg = 0.0;
+  int spin_starts = planner::FitOptions{}.spin_starts;
+  int global_evaluations = planner::FitOptions{}.global_evaluations;
+  int local_evaluations = planner::FitOptions{}.local_evaluations;
+  double huber_delta = planner::FitOptions{}.huber_delta;
+  int restarts = planner::FitOptions{}.restarts;
+};
+// Adds --max-elevation, --spin-starts, --global-evaluations, --local-evaluations,
+// --restarts and --huber-delta.
+void add_stroke_search_flags(CLI::App& command, StrokeSearchArgs* args);
+// Empty when the values are usable; otherwise the line to print (naming the flag).
+std::string check_stroke_search(const StrokeSearchArgs& args);
+// The flags applied to a FitOptions.
+void apply_stroke_search(const StrokeSearchArgs& args, planner::FitOptions* options);
+
 struct FitArgs {
   std::string tracks_file;
   bool all_balls = false;
@@ -38,6 +55,7 @@ struct FitArgs {
   std::string svg_dir, png_dir;
   std::string physics_file;
   int threads = 0;
+  StrokeSearchArgs search;
 };
 
 class FitCommand {

@@ -432,6 +432,7 @@ const char* to_string(ShotStatus status) {
     case ShotStatus::event_limit: return "event_limit";
     case ShotStatus::impact_failed: return "impact_failed";
     case ShotStatus::collision_failed: return "collision_failed";
+    case ShotStatus::time_limit: return "time_limit";
   }
   return "unknown";
 }

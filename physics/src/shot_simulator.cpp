@@ -73,6 +73,8 @@ Validation check_stroke(const Scene& scene, Vec2 cue_ball, const Shot& shot,
   if (Validation e = shot.validate()) return e->under({"shot"});
   if (options.max_events < 1)
     return invalid({"max_events"}, "must be at least 1", options.max_events);
+  if (!(options.max_time > 0.0))
+    return invalid({"max_time"}, "must be positive", options.max_time);
   return {};
 }
 
@@ -230,6 +232,13 @@ class ShotRun {
       }
       const Next next = find_next_event();
       if (next.time == kNever) break;
+      if (next.time > options_.max_time) {
+        // finish() brings every moving ball to the horizon.
+        t_ = options_.max_time;
+        end_shot(ShotStatus::time_limit,
+                 fmt::format("followed to {} s (max_time), balls still moving", options_.max_time));
+        break;
+      }
       advance(next);
       resolve(next);
     }

@@ -373,7 +373,10 @@ StrokeFit score_stroke(const phys::CompiledScene& scene, const ShotData& data,
   f.offset_s = offset_s;
   f.evaluations = 1;
   phys::ShotResult r;
-  const auto positions = simulated_positions(scene, data, f, &r, options.max_events);
+  // A windowed score needs the simulation only up to the window's last sample.
+  const double horizon = t_max - offset_s;
+  const auto positions = simulated_positions(scene, data, f, &r, options.max_events,
+                                             horizon > 0.0 ? horizon : kInf);
   if (positions.empty()) {
     f.loss = kFailedLoss;
     f.rmse_cue_m = f.rmse_all_m = kInf;
@@ -405,13 +408,17 @@ StrokeFit score_stroke(const phys::CompiledScene& scene, const ShotData& data,
 std::vector<std::vector<phys::Vec2>> simulated_positions(const phys::CompiledScene& scene,
                                                          const ShotData& data,
                                                          const StrokeFit& fit,
-                                                         phys::ShotResult* result, int max_events) {
+                                                         phys::ShotResult* result, int max_events,
+                                                         double max_time) {
   phys::SimulationOptions so;
   so.max_events = max_events;
   so.record_path = true;
+  so.max_time = max_time;
   phys::ShotResult r = phys::simulate(scene, data.cue_start, fit.shot, so);
   std::vector<std::vector<phys::Vec2>> out;
-  if (r.status != phys::ShotStatus::rest || r.balls.size() != data.p.size()) {
+  const bool followed = r.status == phys::ShotStatus::rest ||
+                        (r.status == phys::ShotStatus::time_limit && std::isfinite(max_time));
+  if (!followed || r.balls.size() != data.p.size()) {
     if (result) *result = std::move(r);
     return out;
   }
@@ -452,9 +459,11 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
     return fa.loss <= fb.loss ? fa : fb;
   };
   objective.best = guess;
-  if (!start) {
+  // One whole search (global stages, continuation, spin starts), seeded by `restart`.
+  const auto search = [&](int restart) {
     // The same stroke gives the same answer on every run and thread.
-    nlopt_srand(std::hash<std::string>{}(data.id) ^ 0x5eed);
+    nlopt_srand((std::hash<std::string>{}(data.id) ^ 0x5eed) +
+                0x9e3779b9ULL * static_cast<unsigned long long>(restart));
     // Continuation in time: the first samples, before kisses and cushions multiply the
     // minima, pin speed and aim; each longer window starts from the last answer.
     const double t0 = data.strike_lo;
@@ -478,23 +487,39 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
     x = unit_of(guess, guess.shot, data, options);
     detail::run_stage(g, &x, &objective);
     local(kInf, options.local_evaluations / 2, 0.02);
-    StrokeFit best = better(continued, objective.best);
+    const StrokeFit second = objective.best;
+    StrokeFit best = better(continued, second);
+    const StrokeFit bases[2] = {evaluate_stroke(scene, data, continued.shot, continued.offset_s, options),
+                                evaluate_stroke(scene, data, second.shot, second.offset_s, options)};
     // Spin starts: speed, aim and strike pinned by the early samples, the spins (which
-    // rule the path after the first cushion or kiss) restarted from a ring of values,
-    // each continued over the later windows.
+    // rule the path after the first cushion or kiss) restarted on two rings of values,
+    // alternately from each global stage's answer, each continued over the later windows.
     const int n = options.spin_starts;
+    const int per_ring = (n + 1) / 2;
     for (int k = 0; k < n; ++k) {
-      const double a = 2.0 * std::numbers::pi * k / n;
-      StrokeFit from = best;
-      from.shot.topspin_k = options.spin_start_radius * std::cos(a);
-      from.shot.sidespin_k = options.spin_start_radius * std::sin(a);
-      from.shot.aim_deg = best.shot.aim_deg + squirt_deg(data, best.shot.sidespin_k) -
+      const int ring = k % 2;
+      // Each restart turns the rings a little, so that its starts are new ones.
+      const double turn = 0.5 * ring + static_cast<double>(restart) / options.restarts;
+      const double a = 2.0 * std::numbers::pi * ((k / 2) + turn) / per_ring;
+      const double radius = ring == 0 ? options.spin_start_radius : options.spin_start_radius_outer;
+      const StrokeFit& base = bases[(k / 2) % 2];
+      StrokeFit from = base;
+      from.shot.topspin_k = radius * std::cos(a);
+      from.shot.sidespin_k = radius * std::sin(a);
+      from.shot.aim_deg = base.shot.aim_deg + squirt_deg(data, base.shot.sidespin_k) -
                           squirt_deg(data, from.shot.sidespin_k);
       objective.best = from;
       for (double w : {windows[1], windows[2], kInf})
         local(w, options.spin_start_evaluations, 0.02);
       best = better(best, objective.best);
     }
+    return best;
+  };
+  if (!start) {
+    // Restarts: the search's minima differ with its random draws (CRS2's population);
+    // the best on every sample is kept.
+    StrokeFit best = search(0);
+    for (int r = 1; r < options.restarts; ++r) best = better(best, search(r));
     objective.best = best;
   }
   local(kInf, options.local_evaluations, start ? 0.01 : 0.005);
@@ -502,6 +527,131 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
   StrokeFit best = evaluate_stroke(scene, data, objective.best.shot, objective.best.offset_s, options);
   best.evaluations = evaluations + 1;
   return best;
+}
+
+// ---- The rolling resistance from final rolls ----
+
+namespace {
+
+// Ball k's final straight roll, measured: the deceleration's mu_roll, or NaN when the
+// samples hold no roll long enough to say.
+double final_roll_mu(const std::vector<double>& t, const std::vector<phys::Vec2>& p,
+                     double gravity) {
+  size_t n = t.size();
+  // The samples after the ball stopped (a ball at rest is not sampled, but the last
+  // sample may be its resting place, long after the one before).
+  while (n >= 2 && std::hypot(p[n - 1].x - p[n - 2].x, p[n - 1].y - p[n - 2].y) <
+                       0.01 * std::max(t[n - 1] - t[n - 2], 1e-9))
+    --n;
+  // A last sample long after the one before is the resting place too.
+  if (n >= 12) {
+    std::vector<double> gaps;
+    for (size_t i = n - 11; i + 1 < n - 1; ++i) gaps.push_back(t[i + 1] - t[i]);
+    std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+    if (t[n - 1] - t[n - 2] > 3.0 * gaps[gaps.size() / 2]) --n;
+  }
+  if (n < 16) return std::nan("");
+  // The straight tail: samples within 3 cm of a line, walking back from the last sample
+  // until three in a row leave it. The line: first through the last sample along the
+  // direction of its last 30 cm, then the principal axis of the tail found with it.
+  const auto from_end = [&](size_t i) { return std::hypot(p[n - 1].x - p[i].x, p[n - 1].y - p[i].y); };
+  size_t far = n - 1;
+  while (far > 0 && from_end(far) < 0.30) --far;
+  phys::Vec2 d{p[n - 1].x - p[far].x, p[n - 1].y - p[far].y};
+  const double len = std::hypot(d.x, d.y);
+  if (len < 0.10) return std::nan("");
+  d = {d.x / len, d.y / len};
+  phys::Vec2 o = p[n - 1];
+  size_t first = n - 1;
+  for (int pass = 0; pass < 2; ++pass) {
+    first = n - 1;
+    int misses = 0;
+    for (size_t i = n - 1; i-- > 0;) {
+      const double rx = p[i].x - o.x, ry = p[i].y - o.y;
+      if (std::fabs(rx * d.y - ry * d.x) > 0.03) {
+        if (++misses == 3) break;
+        continue;
+      }
+      misses = 0;
+      first = i;
+    }
+    // The tail's principal axis (its centroid, the larger eigenvector of its scatter).
+    double cx = 0, cy = 0;
+    const double count = static_cast<double>(n - first);
+    for (size_t i = first; i < n; ++i) cx += p[i].x, cy += p[i].y;
+    cx /= count;
+    cy /= count;
+    double sxx = 0, sxy = 0, syy = 0;
+    for (size_t i = first; i < n; ++i) {
+      sxx += (p[i].x - cx) * (p[i].x - cx);
+      sxy += (p[i].x - cx) * (p[i].y - cy);
+      syy += (p[i].y - cy) * (p[i].y - cy);
+    }
+    const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+    phys::Vec2 axis{std::cos(angle), std::sin(angle)};
+    if (axis.x * d.x + axis.y * d.y < 0.0) axis = {-axis.x, -axis.y};
+    d = axis;
+    o = {cx, cy};
+  }
+  // The ball may slide for a while after the contact that set it on this line: its first
+  // 0.5 s (and at least its first third) are left out.
+  const double start = std::max(t[first] + 0.5, t[first] + (t[n - 1] - t[first]) / 3.0);
+  std::vector<double> ts, ss;
+  for (size_t i = first; i < n; ++i)
+    if (t[i] >= start) {
+      ts.push_back(t[i]);
+      ss.push_back((p[i].x - o.x) * d.x + (p[i].y - o.y) * d.y);
+    }
+  if (ts.size() < 12 || ts.back() - ts.front() < 0.8) return std::nan("");
+  // s(t) = a + b u + c u^2 by least squares (u = t - mean): the deceleration is -2c.
+  double mean = 0;
+  for (double v : ts) mean += v;
+  mean /= static_cast<double>(ts.size());
+  double m[3][4] = {};
+  for (size_t i = 0; i < ts.size(); ++i) {
+    const double u = ts[i] - mean, basis[3] = {1.0, u, u * u};
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) m[r][c] += basis[r] * basis[c];
+      m[r][3] += basis[r] * ss[i];
+    }
+  }
+  for (int col = 0; col < 3; ++col) {  // Gauss-Jordan on the 3 x 3 normal equations
+    int pivot = col;
+    for (int r = col + 1; r < 3; ++r)
+      if (std::fabs(m[r][col]) > std::fabs(m[pivot][col])) pivot = r;
+    if (std::fabs(m[pivot][col]) < 1e-12) return std::nan("");
+    std::swap(m[col], m[pivot]);
+    for (int r = 0; r < 3; ++r) {
+      if (r == col) continue;
+      const double f = m[r][col] / m[col][col];
+      for (int c = col; c < 4; ++c) m[r][c] -= f * m[col][c];
+    }
+  }
+  const double c2 = m[2][3] / m[2][2];
+  const double decel = -2.0 * c2;
+  return decel > 0.0 ? decel / gravity : std::nan("");
+}
+
+}  // namespace
+
+RollingMeasurement measure_rolling_resistance(const std::vector<ShotData>& shots,
+                                              const std::vector<size_t>& which) {
+  RollingMeasurement m;
+  std::vector<double> values;
+  for (size_t i : which) {
+    const ShotData& d = shots[i];
+    for (size_t k = 0; k < d.p.size(); ++k) {
+      const double mu = final_roll_mu(d.t[k], d.p[k], d.scene.cloth.gravity);
+      if (std::isfinite(mu) && mu > 0.0005 && mu < 0.05) values.push_back(mu);
+    }
+  }
+  m.rolls = static_cast<int>(values.size());
+  if (values.empty()) return m;
+  std::sort(values.begin(), values.end());
+  const size_t h = values.size() / 2;
+  m.mu_roll = values.size() % 2 ? values[h] : 0.5 * (values[h - 1] + values[h]);
+  m.quartiles = {values[values.size() / 4], values[(3 * values.size()) / 4]};
+  return m;
 }
 
 // ---- Calibration ----
@@ -626,7 +776,10 @@ std::vector<double> fit_constants(const std::vector<ShotData>& all, const std::v
                                   std::vector<double> c, std::vector<StrokeFit>* strokes,
                                   const CalibrationOptions& o, unsigned threads,
                                   const std::function<void(const std::string&)>& progress,
-                                  const std::string& label) {
+                                  const std::string& label,
+                                  const std::vector<double>& strokes_fitted_with) {
+  // Strokes fitted with other constants are refitted (locally) with these first.
+  if (c != strokes_fitted_with) fit_strokes(all, shots, c, o.fit, threads, true, strokes);
   for (int round = 1; round <= o.rounds; ++round) {
     ConstantsObjective obj{&all,
                            &shots,
@@ -689,13 +842,30 @@ CalibrationResult calibrate(const std::vector<ShotData>& shots, const phys::Scen
   fit_strokes(shots, every, c0, o.fit, threads, false, &base);
   for (const StrokeFit& f : base) res.rmse_before_m.push_back(f.rmse_cue_m);
   res.rmse_heldout_m.assign(n, kInf);
+  // The constants' search is local, and the strokes fitted with the starting constants
+  // absorb much of a wrong rolling resistance (the loss is flat for it round the start),
+  // so mu_roll starts from what the training shots' final rolls measure; their strokes
+  // are refitted locally with it before the search.
+  const auto measured_start = [&](const std::vector<size_t>& train, const std::string& label) {
+    std::vector<double> c = c0;
+    if (!o.measure_rolling) return c;
+    const RollingMeasurement m = measure_rolling_resistance(shots, train);
+    res.measured_mu_roll.push_back(m.mu_roll);
+    res.measured_rolls.push_back(m.rolls);
+    if (m.rolls < 5) return c;
+    c[1] = std::clamp(m.mu_roll, constant_lower_bounds()[1], constant_upper_bounds()[1]);
+    if (progress)
+      progress(fmt::format("{}: mu_roll {:.5g} from {} final rolls (quartiles {:.5g}, {:.5g})",
+                           label, c[1], m.rolls, m.quartiles[0], m.quartiles[1]));
+    return c;
+  };
   for (int f = 0; f < folds && folds > 1; ++f) {
     std::vector<size_t> train, test;
     for (size_t i = 0; i < n; ++i) (res.fold_of[i] == f ? test : train).push_back(i);
     std::vector<StrokeFit> strokes = base;
     const std::vector<double> c =
-        fit_constants(shots, train, c0, &strokes, o, threads, progress,
-                      fmt::format("fold {}/{}", f + 1, folds));
+        fit_constants(shots, train, measured_start(train, fmt::format("fold {}/{}", f + 1, folds)),
+                      &strokes, o, threads, progress, fmt::format("fold {}/{}", f + 1, folds), c0);
     res.fold_constants.push_back(c);
     // Held out: each test shot's stroke fitted afresh with the fold's constants.
     fit_strokes(shots, test, c, o.fit, threads, false, &strokes);
@@ -703,7 +873,8 @@ CalibrationResult calibrate(const std::vector<ShotData>& shots, const phys::Scen
   }
   // The constants written out: fitted on every shot.
   std::vector<StrokeFit> strokes = base;
-  res.constants = fit_constants(shots, every, c0, &strokes, o, threads, progress, "all shots");
+  res.constants = fit_constants(shots, every, measured_start(every, "all shots"), &strokes, o,
+                                threads, progress, "all shots", c0);
   for (size_t i = 0; i < n; ++i) res.rmse_all_shots_m.push_back(strokes[i].rmse_cue_m);
   // Uncertainties: the spread across folds, and the change of one constant (strokes and
   // the others fixed) that raises the all-shot loss by 1 %.

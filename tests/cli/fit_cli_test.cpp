@@ -162,6 +162,49 @@ TEST(FitCli, RecoversSimulatedStrokes) {
   }
 }
 
+// The stroke search's flags reach the search: a smaller search spends fewer simulations
+// (the JSON's shot.simulations), --max-elevation puts the cue's elevation into it within
+// its bound, and a bad value is refused naming the flag.
+TEST(FitCli, StrokeSearchFlags) {
+  std::mt19937 rng(3);
+  const auto tracks = scratch() / "search_flags.jsonl";
+  write_text(tracks, tracked_shot(5, {{0.5, 0.4}, {1.6, 0.9}, {2.2, 0.3}},
+                                  {{3.0, 25.0, 0.3, -0.2}, 0.006}, rng).dump() + "\n");
+  const auto simulations = [&](const std::string& flags, double* elevation) -> long {
+    const ProcessResult run = cueplan("fit " + tracks.string() + " --json --threads 1 " + flags);
+    EXPECT_EQ(run.exit_code, 0) << flags << ": " << run.err;
+    const std::vector<std::string> lines = lines_of(run.out);
+    if (lines.empty() || lines[0].empty()) return -1;
+    const json j = json::parse(lines[0]);
+    if (elevation) *elevation = j["shot"]["elevation_deg"];
+    EXPECT_LT(j["rmse_cue_m"].get<double>(), 0.03) << flags;
+    return j["shot"]["simulations"];
+  };
+  double level = -1, raised = -1;
+  const long full = simulations("", &level);
+  const long small = simulations(
+      "--restarts 1 --spin-starts 0 --global-evaluations 300 --local-evaluations 200", nullptr);
+  const long elevated = simulations("--spin-starts 2 --max-elevation 15", &raised);
+  std::cout << "simulations: default " << full << ", small " << small << ", elevation " << elevated
+            << " (elevation " << raised << " deg)\n";
+  EXPECT_EQ(level, 0.0);
+  EXPECT_GT(full, 3 * 2 * 2400);  // three restarts of two global stages of 2400, and more
+  EXPECT_LT(small, 2 * 300 + 200 * 5);
+  EXPECT_GT(small, 300);
+  EXPECT_GE(raised, 0.0);
+  EXPECT_LE(raised, 15.0);
+  for (const char* bad : {"--spin-starts -1", "--global-evaluations 5", "--local-evaluations nan",
+                          "--max-elevation 75", "--restarts 0", "--huber-delta -0.01"}) {
+    const ProcessResult run = cueplan("fit " + tracks.string() + " " + bad);
+    EXPECT_EQ(run.exit_code, 2) << bad;
+    const std::string flag = std::string(bad).substr(0, std::string(bad).find(' '));
+    EXPECT_NE(run.err.find(flag), std::string::npos) << bad << ": " << run.err;
+  }
+  const ProcessResult cal = cueplan("calibrate " + tracks.string() + " --spin-starts -3");
+  EXPECT_EQ(cal.exit_code, 2);
+  EXPECT_NE(cal.err.find("--spin-starts"), std::string::npos) << cal.err;
+}
+
 TEST(FitCli, BadShotsAreNamedAndSkipped) {
   const FitRun& r = fitted();
   EXPECT_EQ(r.result.exit_code, 2);
@@ -270,6 +313,39 @@ TEST(FitCli, CaromPresetAndPhysicsOverrides) {
   EXPECT_DOUBLE_EQ(s.cloth.mu_roll, 0.0043);
   EXPECT_NE(prob::apply_physics_block("physics: {mu_rol: 0.0043}\n", "<p>", &s).find("mu_rol"),
             std::string::npos);
+}
+
+// The rolling resistance measured from the final rolls of tracked shots (1 cm noise,
+// the tracker's sampling) simulated on a cloth with mu_roll 0.0065: the median over the
+// balls' last straight rolls is within 10 % of it.
+TEST(CalibrateCli, FinalRollsMeasureTheRollingResistance) {
+  phys::Scene cloth = prob::carom_scene();
+  cloth.cloth.mu_roll = 0.0065;
+  std::mt19937 rng(5);
+  const std::vector<std::vector<phys::Vec2>> starts = {
+      {{0.5, 0.4}, {1.6, 0.9}, {2.2, 0.3}}, {{2.3, 0.5}, {0.8, 1.1}, {1.4, 0.25}},
+      {{1.2, 1.2}, {1.6, 0.5}, {0.4, 0.3}}, {{0.4, 0.7}, {2.0, 1.0}, {2.5, 0.4}}};
+  const std::vector<Truth> truths = {{{2.4, 20.0, 0.4, -0.3}, 0.008},
+                                     {{2.0, 155.0, -0.2, 0.3}, 0.01},
+                                     {{2.8, -70.0, 0.3, 0.2}, 0.004},
+                                     {{1.8, 5.0, 0.5, 0.0}, 0.006}};
+  std::vector<plan::ShotData> shots;
+  for (size_t i = 0; i < starts.size(); ++i) {
+    const json line = tracked_shot(static_cast<int>(i + 1), starts[i], truths[i], rng, cloth);
+    const plan::TrackRead read = plan::parse_track(line.dump(), static_cast<int>(i + 1));
+    ASSERT_TRUE(read.error.empty()) << read.error;
+    plan::ShotDataRead data = plan::prepare_shot(*read.track, prob::carom_scene(), plan::TrackFrame{});
+    ASSERT_TRUE(data.error.empty()) << data.error;
+    shots.push_back(std::move(*data.data));
+  }
+  const plan::RollingMeasurement m = plan::measure_rolling_resistance(shots, {0, 1, 2, 3});
+  std::cout << "mu_roll from " << m.rolls << " final rolls: " << m.mu_roll << " (quartiles "
+            << m.quartiles[0] << ", " << m.quartiles[1] << "; simulated with 0.0065)\n";
+  EXPECT_GE(m.rolls, 3);
+  EXPECT_NEAR(m.mu_roll, 0.0065, 0.00065);
+  // No rolls, no measurement.
+  EXPECT_EQ(plan::measure_rolling_resistance(shots, {}).rolls, 0);
+  EXPECT_TRUE(std::isnan(plan::measure_rolling_resistance(shots, {}).mu_roll));
 }
 
 // `calibrate` moves a constant the shots were simulated with back toward its true value:

@@ -975,3 +975,53 @@ TEST(ShotSimulatorBalls, BadObjectBallsAreNamedByField) {
 
 }  // namespace
 }  // namespace cueplan::physics
+
+namespace cueplan::physics {
+namespace {
+
+// A shot followed to a horizon (SimulationOptions::max_time) is the full shot cut there:
+// the same events before it, every ball where the full shot has it at that time, and the
+// time_limit status; a horizon after the shot ends changes nothing; a bad one is refused.
+TEST(ShotSimulatorBalls, AHorizonCutsTheShotWhereTheFullShotIs) {
+  const Scene s = with_balls(snooker_scene(), {{"red", {1.5, 0.62}}, {"yellow", {2.1, 0.75}}});
+  const Shot shot{2.5, 8.0, 0.6, 0.5};
+  const ShotResult full = simulate(s, {0.7, 0.5}, shot);
+  ASSERT_EQ(full.status, ShotStatus::rest) << full.message;
+  ASSERT_GE(full.events.size(), 4u);
+  const double horizon = 0.5 * (full.events[2].time + full.events[3].time);
+  SimulationOptions o;
+  o.max_time = horizon;
+  const ShotResult cut = simulate(s, {0.7, 0.5}, shot, o);
+  EXPECT_EQ(cut.status, ShotStatus::time_limit) << cut.message;
+  ASSERT_EQ(cut.balls.size(), full.balls.size());
+  for (size_t k = 0; k < full.balls.size(); ++k) {
+    const BallOutcome& f = full.balls[k];
+    const BallOutcome& c = cut.balls[k];
+    // Where the full shot has ball k at the horizon.
+    Vec2 there = f.start;
+    for (const PathSegment& seg : f.path)
+      if (horizon >= seg.t0 && horizon <= seg.t1) there = seg.at(horizon);
+    if (!f.path.empty() && horizon > f.path.back().t1) there = f.final_position;
+    EXPECT_NEAR(c.final_position.x, there.x, 1e-12) << f.name;
+    EXPECT_NEAR(c.final_position.y, there.y, 1e-12) << f.name;
+    size_t before = 0;
+    for (const ShotEvent& e : f.events) before += e.time <= horizon;
+    EXPECT_EQ(c.events.size(), before) << f.name;
+    if (!f.path.empty() && f.path.back().t1 > horizon) {  // still moving there
+      ASSERT_FALSE(c.path.empty()) << f.name;
+      EXPECT_NEAR(c.path.back().t1, horizon, 1e-12) << f.name;
+    }
+  }
+  o.max_time = full.duration + 1.0;
+  const ShotResult late = simulate(s, {0.7, 0.5}, shot, o);
+  EXPECT_EQ(late.status, ShotStatus::rest);
+  EXPECT_EQ(late.final_position.x, full.final_position.x);
+  EXPECT_EQ(late.events.size(), full.events.size());
+  o.max_time = std::nan("");
+  const ShotResult bad = simulate(s, {0.7, 0.5}, shot, o);
+  EXPECT_EQ(bad.status, ShotStatus::invalid_input);
+  EXPECT_NE(bad.message.find("max_time"), std::string::npos) << bad.message;
+}
+
+}  // namespace
+}  // namespace cueplan::physics

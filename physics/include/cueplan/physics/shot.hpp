@@ -18,6 +18,7 @@
 // Pure functions of their arguments: no globals, safe from many threads.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -311,6 +312,8 @@ enum class ShotStatus {
                    // presses a ball into a cushion it touches with no approach speed
                    // (sliding along a cushion is not modelled)
   collision_failed,  // the ball-ball collision model could not resolve a contact
+  time_limit,      // SimulationOptions::max_time reached with a ball still moving: every
+                   // ball's path and final_position stop at that time
 };
 const char* to_string(ShotStatus status);
 
@@ -330,6 +333,10 @@ struct SimulationOptions {
   // each).
   int max_events = 200;
   bool record_path = true;              // fill the path of ShotResult and of each ball
+  // The shot is followed up to this time (s after the strike) only: a caller that needs
+  // no more (a fit compared with the first second of a recording) skips the events after
+  // it. A shot still moving then ends as time_limit.
+  double max_time = std::numeric_limits<double>::infinity();
 };
 
 // The impact method simulate() uses for cushion contacts with these options: closed_form

@@ -9,7 +9,9 @@
 // Pure functions of their arguments: no globals, safe from many threads.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,18 +85,24 @@ struct FitOptions {
   bool all_balls = false;        // objective over every ball's samples, not only the cue ball's
   double huber_delta = 0.03;     // m: residuals beyond it count linearly (tracking glitches)
   double max_offset_s = 0.02;    // the strike lies in [0, max_offset_s] after the file's t = 0
-  int global_evaluations = 1200;  // NLopt global stage (CRS2) over the box round the first guess
+  int global_evaluations = 2400;  // each of the two NLopt global stages (CRS2) over the box
+                                  // round the first guess
   int local_evaluations = 600;    // NLopt local stage (BOBYQA) from the best point so far
   double aim_span_deg = 8.0;      // the box: first-guess aim +- this
   double speed_span = 0.35;      // and first-guess speed x [1 - span, 1 + span]
   double spin_max = 1.25;        // |k_T|, |k_S| <= this
   int max_events = 400;
-  // Extra starts of the local stage with the spins reset to a ring of radius
-  // spin_start_radius round (0, 0), speed, aim and strike kept from the global stages;
-  // each runs spin_start_evaluations BOBYQA evaluations on each of three windows.
-  int spin_starts = 8;
+  // Extra starts of the local stage with the spins reset to two rings round (0, 0) (radii
+  // spin_start_radius and spin_start_radius_outer, starts alternating between them and,
+  // in pairs, between the two global stages' answers), speed, aim and strike kept; each
+  // runs spin_start_evaluations BOBYQA evaluations on each of three windows.
+  int spin_starts = 24;
   double spin_start_radius = 0.7;
+  double spin_start_radius_outer = 1.05;
   int spin_start_evaluations = 100;
+  // Whole searches (both global stages, the continuation, the spin starts) with their own
+  // random draws and turned spin rings; the best on every sample is kept.
+  int restarts = 3;
   // The cue's elevation (deg): > 0 adds it to the search, in [0, max_elevation_deg]
   // (swerve: a stroke with side and elevation curves while it slides); 0 keeps the cue
   // level.
@@ -126,12 +134,13 @@ StrokeFit fit_stroke(const physics::CompiledScene& scene, const ShotData& data,
                      const FitOptions& options, const StrokeFit* start = nullptr);
 
 // Where the simulation puts every ball at each of its recorded times (m, table frame),
-// in ShotData's ball order; empty when the simulation fails.
-std::vector<std::vector<physics::Vec2>> simulated_positions(const physics::CompiledScene& scene,
-                                                            const ShotData& data,
-                                                            const StrokeFit& fit,
-                                                            physics::ShotResult* result = nullptr,
-                                                            int max_events = 400);
+// in ShotData's ball order; empty when the simulation fails. With a finite max_time (s
+// after the strike) the shot is followed only that long (positions after it are where
+// the balls were then).
+std::vector<std::vector<physics::Vec2>> simulated_positions(
+    const physics::CompiledScene& scene, const ShotData& data, const StrokeFit& fit,
+    physics::ShotResult* result = nullptr, int max_events = 400,
+    double max_time = std::numeric_limits<double>::infinity());
 
 // ---- Calibration ----
 
@@ -155,8 +164,23 @@ void set_constants(const std::vector<double>& c, physics::Scene* scene);
 std::vector<double> constant_lower_bounds(size_t count = kConstantCount);
 std::vector<double> constant_upper_bounds(size_t count = kConstantCount);
 
+// The rolling resistance measured from recorded final rolls: on each ball's last straight
+// stretch (past its first half second, when a ball may still slide), a quadratic fit of
+// the distance against time gives the deceleration mu_roll g. The median over every ball
+// of `which` (indices into shots) with a roll of >= 0.8 s and 12 samples.
+struct RollingMeasurement {
+  double mu_roll = std::numeric_limits<double>::quiet_NaN();
+  int rolls = 0;                         // balls measured
+  std::array<double, 2> quartiles{};     // of the per-ball values
+};
+RollingMeasurement measure_rolling_resistance(const std::vector<ShotData>& shots,
+                                              const std::vector<size_t>& which);
+
 struct CalibrationOptions {
   int folds = 5;
+  // mu_roll starts from measure_rolling_resistance on each fold's training shots (when
+  // it has >= 5 rolls) instead of the starting constants' value.
+  bool measure_rolling = true;
   int rounds = 2;                  // alternations of constants and strokes
   int constant_evaluations = 120;  // NLopt local stage per round
   // Each evaluation of the constants refits every stroke with this many local
@@ -185,6 +209,10 @@ struct CalibrationResult {
   std::vector<double> constants;             // fitted on every shot
   std::vector<double> rmse_all_shots_m;      // every shot, with `constants`
   std::vector<ConstantReport> report;
+  // measure_rolling: the measured mu_roll and the rolls behind it, for each fold and then
+  // for all shots (NaN, 0 when none).
+  std::vector<double> measured_mu_roll;
+  std::vector<int> measured_rolls;
 };
 
 // k-fold calibration of the shared constants on `shots` (all with the same table), each
