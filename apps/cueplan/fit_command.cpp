@@ -159,6 +159,9 @@ void add_stroke_search_flags(CLI::App& c, StrokeSearchArgs* a) {
                "Whole searches per stroke, each with its own random draws; the best is kept "
                "(more: fewer shots caught in a wrong minimum, proportionally longer fits)")
       ->capture_default_str();
+  c.add_flag("--no-horizon", a->no_horizon,
+             "Follow every simulation to rest, even when a score compares only the first "
+             "seconds of the samples (the same scores unless a simulation fails after the window; slower: for comparison)");
   c.add_option("--huber-delta", a->huber_delta,
                "Residuals beyond this distance (m) count linearly in the objective, so that "
                "a few tracking glitches do not drag the fit")
@@ -188,6 +191,7 @@ void apply_stroke_search(const StrokeSearchArgs& a, plan::FitOptions* o) {
   o->local_evaluations = a.local_evaluations;
   o->huber_delta = a.huber_delta;
   o->restarts = a.restarts;
+  o->horizon = !a.no_horizon;
 }
 
 std::vector<plan::ShotData> read_tracks(const std::string& path, const phys::Scene& table,

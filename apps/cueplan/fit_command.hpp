@@ -39,9 +39,10 @@ struct StrokeSearchArgs {
   int local_evaluations = planner::FitOptions{}.local_evaluations;
   double huber_delta = planner::FitOptions{}.huber_delta;
   int restarts = planner::FitOptions{}.restarts;
+  bool no_horizon = false;
 };
 // Adds --max-elevation, --spin-starts, --global-evaluations, --local-evaluations,
-// --restarts and --huber-delta.
+// --restarts, --huber-delta and --no-horizon.
 void add_stroke_search_flags(CLI::App& command, StrokeSearchArgs* args);
 // Empty when the values are usable; otherwise the line to print (naming the flag).
 std::string check_stroke_search(const StrokeSearchArgs& args);

@@ -374,7 +374,7 @@ StrokeFit score_stroke(const phys::CompiledScene& scene, const ShotData& data,
   f.evaluations = 1;
   phys::ShotResult r;
   // A windowed score needs the simulation only up to the window's last sample.
-  const double horizon = t_max - offset_s;
+  const double horizon = options.horizon ? t_max - offset_s : kInf;
   const auto positions = simulated_positions(scene, data, f, &r, options.max_events,
                                              horizon > 0.0 ? horizon : kInf);
   if (positions.empty()) {

@@ -96,13 +96,17 @@ struct FitOptions {
   // spin_start_radius and spin_start_radius_outer, starts alternating between them and,
   // in pairs, between the two global stages' answers), speed, aim and strike kept; each
   // runs spin_start_evaluations BOBYQA evaluations on each of three windows.
-  int spin_starts = 24;
+  int spin_starts = 8;
   double spin_start_radius = 0.7;
   double spin_start_radius_outer = 1.05;
   int spin_start_evaluations = 100;
   // Whole searches (both global stages, the continuation, the spin starts) with their own
   // random draws and turned spin rings; the best on every sample is kept.
-  int restarts = 3;
+  int restarts = 6;
+  // A score on a window of the samples follows the simulation only to the window's last
+  // sample (SimulationOptions::max_time); false follows every one to rest (the same
+  // scores, slower: for comparison).
+  bool horizon = true;
   // The cue's elevation (deg): > 0 adds it to the search, in [0, max_elevation_deg]
   // (swerve: a stroke with side and elevation curves while it slides); 0 keeps the cue
   // level.
