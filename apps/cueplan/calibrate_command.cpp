@@ -73,6 +73,9 @@ CalibrateCommand::CalibrateCommand(CLI::App& parent) {
                "Start from this physics: block instead of the carom preset's constants")
       ->type_name("FILE");
   c.add_option("--threads", args_.threads, "Threads (0: one per core)")->capture_default_str();
+  c.add_option("--constant-step", args_.constant_step,
+               "The constants' search's first step, as a fraction of each constant's range")
+      ->capture_default_str();
   c.add_flag("--keep-mu-roll", args_.keep_mu_roll,
              "Start mu_roll's search from the starting constants' value, not from the "
              "rolling resistance measured on the training shots' final straight rolls");
@@ -88,6 +91,8 @@ int CalibrateCommand::validate(std::ostream& err) const {
   if (args_.refit_evaluations < 0)
     return usage_error(err, kCommandName, "--refit-evaluations must be >= 0");
   if (args_.threads < 0) return usage_error(err, kCommandName, "--threads must be >= 0");
+  if (!(args_.constant_step > 0.0 && args_.constant_step <= 0.5))
+    return usage_error(err, kCommandName, "--constant-step must be in (0, 0.5]");
   if (std::string why = check_stroke_search(args_.search); !why.empty())
     return usage_error(err, kCommandName, why);
   if (!args_.out_file.empty())
@@ -115,6 +120,7 @@ int CalibrateCommand::run(std::ostream& out, std::ostream& err) const {
   o.threads = args_.threads;
   apply_stroke_search(args_.search, &o.fit);
   o.measure_rolling = !args_.keep_mu_roll;
+  o.constant_step = args_.constant_step;
   const plan::CalibrationResult r = plan::calibrate(
       shots, table, o, [&err](const std::string& line) { err << kCommandName << ": " << line << '\n'; });
 

@@ -25,6 +25,7 @@ struct CalibrateArgs {
   int threads = 0;
   StrokeSearchArgs search;
   bool keep_mu_roll = false;
+  double constant_step = planner::CalibrationOptions{}.constant_step;
 };
 
 class CalibrateCommand {

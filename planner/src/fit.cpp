@@ -432,99 +432,127 @@ std::vector<std::vector<phys::Vec2>> simulated_positions(const phys::CompiledSce
   return out;
 }
 
+namespace {
+
+// A local BOBYQA run from objective's best point so far, on the samples up to t_max, the
+// box recentred on that point.
+void local_stage(StrokeObjective& objective, double t_max, int budget, double step) {
+  const StrokeFit from = objective.best;
+  objective.t_max = t_max;
+  objective.centre = from.shot;
+  objective.best = score_stroke(*objective.scene, *objective.data, from.shot, from.offset_s,
+                                *objective.options, t_max);
+  std::vector<double> x = unit_of(from, from.shot, *objective.data, *objective.options);
+  detail::StageSettings l;
+  l.algorithm = NLOPT_LN_BOBYQA;
+  l.max_evaluations = budget;
+  l.x_tolerance = 1e-7;
+  l.initial_step = step;
+  detail::run_stage(l, &x, &objective);
+}
+
+// The better on every sample of two candidates (each scored on all samples).
+StrokeFit better_of(const phys::CompiledScene& scene, const ShotData& data,
+                    const FitOptions& options, const StrokeFit& a, const StrokeFit& b) {
+  const StrokeFit fa = evaluate_stroke(scene, data, a.shot, a.offset_s, options);
+  const StrokeFit fb = evaluate_stroke(scene, data, b.shot, b.offset_s, options);
+  return fa.loss <= fb.loss ? fa : fb;
+}
+
+// One whole search (global stages, continuation, spin starts), its random draws seeded
+// by the shot and `restart`. The first global stage's box is centred on *centre (the
+// first guess for the first restart), which it leaves at the last spin start's answer
+// for the next restart; the second global stage's box is centred on the first guess.
+// *evaluations counts its simulations.
+StrokeFit search_stroke(const phys::CompiledScene& scene, const ShotData& data,
+                        const FitOptions& options, const StrokeFit& guess, int restart,
+                        phys::Shot* centre, int* evaluations) {
+  StrokeObjective objective{&scene, &data, &options, *centre, guess, 0};
+  const auto local = [&](double t_max, int budget, double step) {
+    local_stage(objective, t_max, budget, step);
+  };
+  const auto better = [&](const StrokeFit& a, const StrokeFit& b) {
+    return better_of(scene, data, options, a, b);
+  };
+  // The same stroke gives the same answer on every run and thread (NLopt's seed is the
+  // calling thread's).
+  nlopt_srand((std::hash<std::string>{}(data.id) ^ 0x5eed) +
+              0x9e3779b9ULL * static_cast<unsigned long long>(restart));
+  // Continuation in time: the first samples, before kisses and cushions multiply the
+  // minima, pin speed and aim; each longer window starts from the last answer.
+  const double t0 = data.strike_lo;
+  const double windows[] = {t0 + 0.6, t0 + 1.2, t0 + 2.5, t0 + 5.0, kInf};
+  objective.t_max = windows[0];
+  objective.best = score_stroke(scene, data, guess.shot, guess.offset_s, options, windows[0]);
+  // Global: CRS2 over the box round the first guess (as `solve`'s global stage).
+  detail::StageSettings g;
+  g.algorithm = NLOPT_GN_CRS2_LM;
+  g.max_evaluations = options.global_evaluations;
+  std::vector<double> x = unit_of(guess, guess.shot, data, options);
+  detail::run_stage(g, &x, &objective);
+  for (double w : windows) local(w, options.local_evaluations / 2, 0.02);
+  const StrokeFit continued = objective.best;
+  // A second start: the global stage on every sample at once, then a local run.
+  objective.t_max = kInf;
+  objective.centre = guess.shot;
+  objective.best = evaluate_stroke(scene, data, guess.shot, guess.offset_s, options);
+  x = unit_of(guess, guess.shot, data, options);
+  detail::run_stage(g, &x, &objective);
+  local(kInf, options.local_evaluations / 2, 0.02);
+  const StrokeFit second = objective.best;
+  StrokeFit best = better(continued, second);
+  const StrokeFit bases[2] = {evaluate_stroke(scene, data, continued.shot, continued.offset_s, options),
+                              evaluate_stroke(scene, data, second.shot, second.offset_s, options)};
+  // Spin starts: speed, aim and strike pinned by the early samples, the spins (which rule
+  // the path after the first cushion or kiss) restarted on two rings of values,
+  // alternately from each global stage's answer, each continued over the later windows.
+  const int n = options.spin_starts;
+  const int per_ring = (n + 1) / 2;
+  for (int k = 0; k < n; ++k) {
+    const int ring = k % 2;
+    // Each restart turns the rings a little, so that its starts are new ones.
+    const double turn = 0.5 * ring + static_cast<double>(restart) / options.restarts;
+    const double a = 2.0 * std::numbers::pi * ((k / 2) + turn) / per_ring;
+    const double radius = ring == 0 ? options.spin_start_radius : options.spin_start_radius_outer;
+    const StrokeFit& base = bases[(k / 2) % 2];
+    StrokeFit from = base;
+    from.shot.topspin_k = radius * std::cos(a);
+    from.shot.sidespin_k = radius * std::sin(a);
+    from.shot.aim_deg = base.shot.aim_deg + squirt_deg(data, base.shot.sidespin_k) -
+                        squirt_deg(data, from.shot.sidespin_k);
+    objective.best = from;
+    for (double w : {windows[1], windows[2], kInf}) local(w, options.spin_start_evaluations, 0.02);
+    best = better(best, objective.best);
+  }
+  *evaluations = objective.evaluations;
+  *centre = objective.centre;
+  return best;
+}
+
+}  // namespace
+
 StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
                      const FitOptions& options, const StrokeFit* start) {
   const StrokeFit guess = start ? *start : kinematic_guess(data, options);
-  StrokeObjective objective{&scene, &data, &options, guess.shot, {}, 0};
   int evaluations = 0;
-  // A local BOBYQA run from the best point so far, on the samples up to t_max, the box
-  // recentred on that point.
-  const auto local = [&](double t_max, int budget, double step) {
-    const StrokeFit from = objective.best;
-    objective.t_max = t_max;
-    objective.centre = from.shot;
-    objective.best = score_stroke(scene, data, from.shot, from.offset_s, options, t_max);
-    std::vector<double> x = unit_of(from, from.shot, data, options);
-    detail::StageSettings l;
-    l.algorithm = NLOPT_LN_BOBYQA;
-    l.max_evaluations = budget;
-    l.x_tolerance = 1e-7;
-    l.initial_step = step;
-    detail::run_stage(l, &x, &objective);
-  };
-  // The best on every sample of two candidates (each scored on all samples).
-  const auto better = [&](const StrokeFit& a, const StrokeFit& b) {
-    const StrokeFit fa = evaluate_stroke(scene, data, a.shot, a.offset_s, options);
-    const StrokeFit fb = evaluate_stroke(scene, data, b.shot, b.offset_s, options);
-    return fa.loss <= fb.loss ? fa : fb;
-  };
-  objective.best = guess;
-  // One whole search (global stages, continuation, spin starts), seeded by `restart`.
-  const auto search = [&](int restart) {
-    // The same stroke gives the same answer on every run and thread.
-    nlopt_srand((std::hash<std::string>{}(data.id) ^ 0x5eed) +
-                0x9e3779b9ULL * static_cast<unsigned long long>(restart));
-    // Continuation in time: the first samples, before kisses and cushions multiply the
-    // minima, pin speed and aim; each longer window starts from the last answer.
-    const double t0 = data.strike_lo;
-    const double windows[] = {t0 + 0.6, t0 + 1.2, t0 + 2.5, t0 + 5.0, kInf};
-    objective.t_max = windows[0];
-    objective.best = score_stroke(scene, data, guess.shot, guess.offset_s, options, windows[0]);
-    // Global: CRS2 over the box round the first guess (as `solve`'s global stage).
-    detail::StageSettings g;
-    g.algorithm = NLOPT_GN_CRS2_LM;
-    g.max_evaluations = options.global_evaluations;
-    std::vector<double> x = unit_of(guess, guess.shot, data, options);
-    detail::run_stage(g, &x, &objective);
-    for (double w : windows) local(w, options.local_evaluations / 2, 0.02);
-    const StrokeFit continued = objective.best;
-    // A second start: the global stage on every sample at once, then a local run.
-    evaluations += objective.evaluations;
-    objective.evaluations = 0;
-    objective.t_max = kInf;
-    objective.centre = guess.shot;
-    objective.best = evaluate_stroke(scene, data, guess.shot, guess.offset_s, options);
-    x = unit_of(guess, guess.shot, data, options);
-    detail::run_stage(g, &x, &objective);
-    local(kInf, options.local_evaluations / 2, 0.02);
-    const StrokeFit second = objective.best;
-    StrokeFit best = better(continued, second);
-    const StrokeFit bases[2] = {evaluate_stroke(scene, data, continued.shot, continued.offset_s, options),
-                                evaluate_stroke(scene, data, second.shot, second.offset_s, options)};
-    // Spin starts: speed, aim and strike pinned by the early samples, the spins (which
-    // rule the path after the first cushion or kiss) restarted on two rings of values,
-    // alternately from each global stage's answer, each continued over the later windows.
-    const int n = options.spin_starts;
-    const int per_ring = (n + 1) / 2;
-    for (int k = 0; k < n; ++k) {
-      const int ring = k % 2;
-      // Each restart turns the rings a little, so that its starts are new ones.
-      const double turn = 0.5 * ring + static_cast<double>(restart) / options.restarts;
-      const double a = 2.0 * std::numbers::pi * ((k / 2) + turn) / per_ring;
-      const double radius = ring == 0 ? options.spin_start_radius : options.spin_start_radius_outer;
-      const StrokeFit& base = bases[(k / 2) % 2];
-      StrokeFit from = base;
-      from.shot.topspin_k = radius * std::cos(a);
-      from.shot.sidespin_k = radius * std::sin(a);
-      from.shot.aim_deg = base.shot.aim_deg + squirt_deg(data, base.shot.sidespin_k) -
-                          squirt_deg(data, from.shot.sidespin_k);
-      objective.best = from;
-      for (double w : {windows[1], windows[2], kInf})
-        local(w, options.spin_start_evaluations, 0.02);
-      best = better(best, objective.best);
-    }
-    return best;
-  };
+  StrokeFit best = guess;
   if (!start) {
-    // Restarts: the search's minima differ with its random draws (CRS2's population);
-    // the best on every sample is kept.
-    StrokeFit best = search(0);
-    for (int r = 1; r < options.restarts; ++r) best = better(best, search(r));
-    objective.best = best;
+    // Restarts: the search's minima differ with its random draws (CRS2's population) and
+    // where its first box is centred (each later restart round a stroke the one before
+    // found); the best on every sample is kept.
+    phys::Shot centre = guess.shot;
+    for (int r = 0; r < std::max(1, options.restarts); ++r) {
+      int spent = 0;
+      const StrokeFit found = search_stroke(scene, data, options, guess, r, &centre, &spent);
+      evaluations += spent;
+      best = r == 0 ? found : better_of(scene, data, options, best, found);
+    }
   }
-  local(kInf, options.local_evaluations, start ? 0.01 : 0.005);
+  // The polish, from the best (or from `start`: a refit after the constants changed).
+  StrokeObjective objective{&scene, &data, &options, best.shot, best, 0};
+  local_stage(objective, kInf, options.local_evaluations, start ? 0.01 : 0.005);
   evaluations += objective.evaluations;
-  StrokeFit best = evaluate_stroke(scene, data, objective.best.shot, objective.best.offset_s, options);
+  best = evaluate_stroke(scene, data, objective.best.shot, objective.best.offset_s, options);
   best.evaluations = evaluations + 1;
   return best;
 }
@@ -799,7 +827,7 @@ std::vector<double> fit_constants(const std::vector<ShotData>& all, const std::v
     detail::StageSettings l;
     l.algorithm = NLOPT_LN_BOBYQA;
     l.max_evaluations = o.constant_evaluations;
-    l.initial_step = 0.05;
+    l.initial_step = o.constant_step;
     l.x_tolerance = 1e-5;
     int calls = 0;
     auto counted = [&obj, &calls](const double* x) {

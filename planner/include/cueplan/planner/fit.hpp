@@ -101,7 +101,9 @@ struct FitOptions {
   double spin_start_radius_outer = 1.05;
   int spin_start_evaluations = 100;
   // Whole searches (both global stages, the continuation, the spin starts) with their own
-  // random draws and turned spin rings; the best on every sample is kept.
+  // random draws and turned spin rings, each later one's first global box centred on a
+  // stroke the one before found (its last spin start's answer); the best on every
+  // sample is kept.
   int restarts = 6;
   // A score on a window of the samples follows the simulation only to the window's last
   // sample (SimulationOptions::max_time); false follows every one to rest (the same
@@ -191,6 +193,9 @@ struct CalibrationOptions {
   // evaluations (strokes and constants are strongly coupled - speed and cloth friction,
   // above all - so constants with strokes held fixed barely move).
   int refit_evaluations = 40;
+  // The constants' search's first step, as a fraction of each constant's range
+  // (constant_lower_bounds .. constant_upper_bounds).
+  double constant_step = 0.05;
   int threads = 0;                 // 0: one per core
   FitOptions fit;
 };
