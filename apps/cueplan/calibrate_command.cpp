@@ -141,12 +141,15 @@ int CalibrateCommand::run(std::ostream& out, std::ostream& err) const {
   if (!r.measured_mu_roll.empty()) {
     // The start of mu_roll's search: the final rolls of each fold's training shots, then
     // of all shots.
-    out << "\nrolling resistance from final rolls (mu_roll's start):";
-    for (size_t i = 0; i < r.measured_mu_roll.size(); ++i)
-      out << fmt::format(" {}{:.5g} ({} rolls)",
+    out << "\nrolling resistance from final rolls (mu_roll's start, from 5 rolls on):";
+    for (size_t i = 0; i < r.measured_mu_roll.size(); ++i) {
+      const int rolls = r.measured_rolls[i];
+      out << fmt::format(" {}{:.5g} ({} roll{}{})",
                          i + 1 < r.measured_mu_roll.size() ? fmt::format("fold {}: ", i + 1)
                                                              : std::string("all shots: "),
-                         r.measured_mu_roll[i], r.measured_rolls[i]);
+                         r.measured_mu_roll[i], rolls, rolls == 1 ? "" : "s",
+                         rolls < 5 ? ", not used" : "");
+    }
     out << "\n";
   }
   out << "\nper shot (cm): id fold before held_out all_shots\n";
