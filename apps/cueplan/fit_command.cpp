@@ -142,7 +142,7 @@ ordered_json physics_json(const phys::Scene& s) {
 
 void add_stroke_search_flags(CLI::App& c, StrokeSearchArgs* a) {
   c.add_option("--max-elevation", a->max_elevation_deg,
-               "Put the cue's elevation into the stroke search, in [0, DEG] (swerve); 0 keeps "
+               "The cue's elevation in the stroke search, in [0, DEG] (swerve with side); 0 keeps "
                "the cue level")
       ->type_name("DEG")
       ->capture_default_str();

@@ -33,7 +33,7 @@ nlohmann::ordered_json physics_json(const physics::Scene& scene);
 
 // The stroke search's flags, shared by `fit` and `calibrate` (planner::FitOptions).
 struct StrokeSearchArgs {
-  double max_elevation_deg = 0.0;
+  double max_elevation_deg = planner::FitOptions{}.max_elevation_deg;
   int spin_starts = planner::FitOptions{}.spin_starts;
   int global_evaluations = planner::FitOptions{}.global_evaluations;
   int local_evaluations = planner::FitOptions{}.local_evaluations;

@@ -180,14 +180,17 @@ TEST(FitCli, StrokeSearchFlags) {
     EXPECT_LT(j["rmse_cue_m"].get<double>(), 0.03) << flags;
     return j["shot"]["simulations"];
   };
-  double level = -1, raised = -1;
-  const long full = simulations("", &level);
+  double level = -1, raised = -1, by_default = -1;
+  const long full = simulations("", &by_default);
   const long small = simulations(
-      "--restarts 1 --spin-starts 0 --global-evaluations 300 --local-evaluations 200", nullptr);
+      "--restarts 1 --spin-starts 0 --global-evaluations 300 --local-evaluations 200 "
+      "--max-elevation 0", &level);
   const long elevated = simulations("--spin-starts 2 --max-elevation 15", &raised);
   std::cout << "simulations: default " << full << ", small " << small << ", elevation " << elevated
             << " (elevation " << raised << " deg)\n";
-  EXPECT_EQ(level, 0.0);
+  EXPECT_EQ(level, 0.0);  // --max-elevation 0: a level cue
+  EXPECT_GE(by_default, 0.0);
+  EXPECT_LE(by_default, 20.0);  // the default search's bound
   EXPECT_GT(full, 2 * 2 * 2400);  // restarts of two global stages of 2400 each, and more
   EXPECT_LT(small, 2 * 300 + 200 * 5);
   EXPECT_GT(small, 300);
@@ -234,7 +237,8 @@ TEST(FitCli, JsonKeysAndProblemReplaysTracks) {
   const ProcessResult sim = cueplan(
       "simulate " + (scratch() / "problem.json").string() + " --json --max-events 400" +
           " --speed " + s["speed"].dump() + " --aim " + s["aim_deg"].dump() + " --topspin-k " +
-          s["topspin_k"].dump() + " --sidespin-k " + s["sidespin_k"].dump(),
+          s["topspin_k"].dump() + " --sidespin-k " + s["sidespin_k"].dump() +
+          " --elevation-deg " + s["elevation_deg"].dump(),
       "replay");
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const json out = json::parse(sim.out);

@@ -111,8 +111,8 @@ struct FitOptions {
   bool horizon = true;
   // The cue's elevation (deg): > 0 adds it to the search, in [0, max_elevation_deg]
   // (swerve: a stroke with side and elevation curves while it slides); 0 keeps the cue
-  // level.
-  double max_elevation_deg = 0.0;
+  // level. 20 deg covers an ordinary raised butt, short of masse.
+  double max_elevation_deg = 20.0;
 };
 
 // A stroke and the strike time, and how well they match the recorded shot.
