@@ -72,8 +72,11 @@ ordered_json shot_json(const plan::StrokeFit& f) {
 }
 
 std::string stroke_words(const plan::StrokeFit& f) {
-  return fmt::format("{:.3f} m/s at {:.2f} deg, {}", f.shot.speed, f.shot.aim_deg,
-                     tip_offset_words(f.shot));
+  std::string words = fmt::format("{:.3f} m/s at {:.2f} deg, {}", f.shot.speed, f.shot.aim_deg,
+                                  tip_offset_words(f.shot));
+  // The cue's elevation, where the fit raised it.
+  if (f.shot.elevation_deg >= 0.05) words += fmt::format(", cue raised {:.1f} deg", f.shot.elevation_deg);
+  return words;
 }
 
 // The recorded samples over the simulated paths.
