@@ -416,8 +416,8 @@ std::vector<std::vector<phys::Vec2>> simulated_positions(const phys::CompiledSce
   so.max_time = max_time;
   phys::ShotResult r = phys::simulate(scene, data.cue_start, fit.shot, so);
   std::vector<std::vector<phys::Vec2>> out;
-  const bool followed = r.status == phys::ShotStatus::rest ||
-                        (r.status == phys::ShotStatus::time_limit && std::isfinite(max_time));
+  const bool followed =
+      r.status == phys::ShotStatus::rest || r.status == phys::ShotStatus::time_limit;
   if (!followed || r.balls.size() != data.p.size()) {
     if (result) *result = std::move(r);
     return out;
@@ -451,28 +451,17 @@ void local_stage(StrokeObjective& objective, double t_max, int budget, double st
   detail::run_stage(l, &x, &objective);
 }
 
-// The better on every sample of two candidates (each scored on all samples).
-StrokeFit better_of(const phys::CompiledScene& scene, const ShotData& data,
-                    const FitOptions& options, const StrokeFit& a, const StrokeFit& b) {
-  const StrokeFit fa = evaluate_stroke(scene, data, a.shot, a.offset_s, options);
-  const StrokeFit fb = evaluate_stroke(scene, data, b.shot, b.offset_s, options);
-  return fa.loss <= fb.loss ? fa : fb;
-}
-
 // One whole search (global stages, continuation, spin starts), its random draws seeded
 // by the shot and `restart`. The first global stage's box is centred on *centre (the
 // first guess for the first restart), which it leaves at the last spin start's answer
 // for the next restart; the second global stage's box is centred on the first guess.
-// *evaluations counts its simulations.
+// Returns the best stroke scored on every sample; *evaluations counts its simulations.
 StrokeFit search_stroke(const phys::CompiledScene& scene, const ShotData& data,
                         const FitOptions& options, const StrokeFit& guess, int restart,
                         phys::Shot* centre, int* evaluations) {
   StrokeObjective objective{&scene, &data, &options, *centre, guess, 0};
   const auto local = [&](double t_max, int budget, double step) {
     local_stage(objective, t_max, budget, step);
-  };
-  const auto better = [&](const StrokeFit& a, const StrokeFit& b) {
-    return better_of(scene, data, options, a, b);
   };
   // The same stroke gives the same answer on every run and thread (NLopt's seed is the
   // calling thread's).
@@ -500,9 +489,10 @@ StrokeFit search_stroke(const phys::CompiledScene& scene, const ShotData& data,
   detail::run_stage(g, &x, &objective);
   local(kInf, options.local_evaluations / 2, 0.02);
   const StrokeFit second = objective.best;
-  StrokeFit best = better(continued, second);
+  // Both answers scored on every sample; the better (the first on a tie) is the best so far.
   const StrokeFit bases[2] = {evaluate_stroke(scene, data, continued.shot, continued.offset_s, options),
                               evaluate_stroke(scene, data, second.shot, second.offset_s, options)};
+  StrokeFit best = bases[1].loss < bases[0].loss ? bases[1] : bases[0];
   // Spin starts: speed, aim and strike pinned by the early samples, the spins (which rule
   // the path after the first cushion or kiss) restarted on two rings of values,
   // alternately from each global stage's answer, each continued over the later windows.
@@ -522,7 +512,8 @@ StrokeFit search_stroke(const phys::CompiledScene& scene, const ShotData& data,
                         squirt_deg(data, from.shot.sidespin_k);
     objective.best = from;
     for (double w : {windows[1], windows[2], kInf}) local(w, options.spin_start_evaluations, 0.02);
-    best = better(best, objective.best);
+    const StrokeFit f = evaluate_stroke(scene, data, objective.best.shot, objective.best.offset_s, options);
+    if (f.loss < best.loss) best = f;
   }
   *evaluations = objective.evaluations;
   *centre = objective.centre;
@@ -545,7 +536,7 @@ StrokeFit fit_stroke(const phys::CompiledScene& scene, const ShotData& data,
       int spent = 0;
       const StrokeFit found = search_stroke(scene, data, options, guess, r, &centre, &spent);
       evaluations += spent;
-      best = r == 0 ? found : better_of(scene, data, options, best, found);
+      if (r == 0 || found.loss < best.loss) best = found;
     }
   }
   // The polish, from the best (or from `start`: a refit after the constants changed).
@@ -891,9 +882,9 @@ CalibrationResult calibrate(const std::vector<ShotData>& shots, const phys::Scen
     std::vector<size_t> train, test;
     for (size_t i = 0; i < n; ++i) (res.fold_of[i] == f ? test : train).push_back(i);
     std::vector<StrokeFit> strokes = base;
-    const std::vector<double> c =
-        fit_constants(shots, train, measured_start(train, fmt::format("fold {}/{}", f + 1, folds)),
-                      &strokes, o, threads, progress, fmt::format("fold {}/{}", f + 1, folds), c0);
+    const std::string label = fmt::format("fold {}/{}", f + 1, folds);
+    const std::vector<double> c = fit_constants(shots, train, measured_start(train, label),
+                                                &strokes, o, threads, progress, label, c0);
     res.fold_constants.push_back(c);
     // Held out: each test shot's stroke fitted afresh with the fold's constants.
     fit_strokes(shots, test, c, o.fit, threads, false, &strokes);
