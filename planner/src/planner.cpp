@@ -954,9 +954,11 @@ class Planning {
   // The coach's order of the (solved, estimated) finals, one shot per family.
   void coach_rank() {
     std::vector<detail::RankItem> items;
+    const PositionField* field = result_.position_field.get();
     for (const Final& f : finals_)
-      items.push_back(
-          {&f.sampled.outcomes, f.shot.success.both, detail::effort(f.shot.shot, problem_.limits)});
+      items.push_back({&f.sampled.outcomes, f.shot.success.both,
+                       detail::effort(f.shot.shot, problem_.limits),
+                       field ? field->value(f.shot.final_position) : 0.0});
     std::vector<Final> ranked;
     std::set<Family> seen;
     for (size_t i : detail::coach_order(items))
@@ -1110,9 +1112,19 @@ class Planning {
     }
     if (task.next_field) {
       // What each reported stroke leaves for the next pot, from where it stops.
-      result.best.next = next_report(problem_, *task.next_field, result.best.final_position);
-      for (PlannedShot& a : result.alternatives)
-        a.next = next_report(problem_, *task.next_field, a.final_position);
+      // Its success.next interval also holds the chance where the stroke as planned
+      // leaves the cue ball (the field's allowance either side): the player is left
+      // there when the stroke is played as planned, which the noisy landings' middle
+      // 80 % can miss where the zone is small.
+      std::vector<PlannedShot*> reported{&result.best};
+      for (PlannedShot& a : result.alternatives) reported.push_back(&a);
+      for (PlannedShot* p : reported) {
+        p->next = next_report(problem_, *task.next_field, p->final_position);
+        if (!p->success.next || p->success.next->samples == 0) continue;
+        Estimate& n = *p->success.next;
+        n.low = std::min(n.low, std::max(0.0, p->next->p - kFieldError));
+        n.high = std::max(n.high, std::min(1.0, p->next->p + kFieldError));
+      }
     }
     if (!task.pot_aim && !problem_.required_first_contact().empty()) {
       // The route of each reported stroke in a player's words (one simulation each).

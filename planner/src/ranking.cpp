@@ -61,7 +61,7 @@ std::vector<size_t> coach_order(const std::vector<RankItem>& items) {
       }
       if (c.both.p > l.both.p || (c.both.p == l.both.p && c.effort < l.effort)) leader = i;
     }
-    size_t pick = leader;
+    std::vector<size_t> contenders{leader};
     for (size_t i : left) {
       if (i == leader) continue;
       const RankItem& c = items[i];
@@ -69,8 +69,18 @@ std::vector<size_t> coach_order(const std::vector<RankItem>& items) {
       if (c.both.high < top_low) continue;
       if (c.both.successes == 0 && items[leader].both.successes > 0) continue;
       if (significantly_different(*c.outcomes, *items[leader].outcomes)) continue;
+      contenders.push_back(i);
+    }
+    double best_landing = 0.0;
+    for (size_t i : contenders) best_landing = std::max(best_landing, items[i].landing);
+    size_t pick = leader;
+    bool picked = false;
+    for (size_t i : contenders) {
+      const RankItem& c = items[i];
+      if (c.landing < best_landing - kLandingBand) continue;
       const RankItem& p = items[pick];
-      if (c.effort < p.effort || (c.effort == p.effort && c.both.p > p.both.p)) pick = i;
+      if (!picked || c.effort < p.effort || (c.effort == p.effort && c.both.p > p.both.p)) pick = i;
+      picked = true;
     }
     order.push_back(pick);
     std::erase(left, pick);

@@ -25,12 +25,19 @@ bool significantly_different(const std::vector<uint8_t>& a, const std::vector<ui
 // [0, 1]. Lower is simpler.
 double effort(const physics::Shot& shot, const problems::Limits& limits);
 
-// A stroke to be ranked: its outcomes on the common draws, their estimate and its effort.
+// A stroke to be ranked: its outcomes on the common draws, their estimate and its effort;
+// with position play, the value of the position its planned stroke leaves (the position
+// field at its nominal landing, 0..1; 0 for every stroke without a next pot).
 struct RankItem {
   const std::vector<uint8_t>* outcomes = nullptr;
   Estimate both;
   double effort = 0.0;
+  double landing = 0.0;
 };
+
+// Contenders whose planned landings are worth within this of the best contender's are
+// played for alike (position.hpp's kZoneWidth: the zone's own width).
+inline constexpr double kLandingBand = 0.10;
 
 // The coach's order, as indices into `items`, best first. Repeatedly: the leader is,
 // of the strokes sampled the most, the one with the highest success rate (ties: less
@@ -39,8 +46,10 @@ struct RankItem {
 // every stroke sampled as often that McNemar's test cannot tell from it whose interval
 // reaches the highest lower bound of those left and which succeeded at
 // least once if the leader did (a stroke no sample landed is no way to play the shot
-// while another lands sometimes); the simplest contender
-// (least effort; ties: higher rate, then lower index) comes next. So the first
+// while another lands sometimes); of the contenders whose planned landing is worth
+// within kLandingBand of the best contender's (a coach plays for the zone when the
+// odds cannot tell the ways apart: the stroke as planned must leave the next ball),
+// the simplest (least effort; ties: higher rate, then lower index) comes next. So the first
 // stroke's interval is never below another's, and a harder stroke comes first only
 // when it succeeds measurably more often.
 std::vector<size_t> coach_order(const std::vector<RankItem>& items);

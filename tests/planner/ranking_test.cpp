@@ -165,6 +165,32 @@ TEST(CoachOrderTest, AStrokeDroppedFromTheRaceIsNotPreferredToOneSampledFully) {
   EXPECT_EQ(detail::coach_order({simple, hard}), (std::vector<size_t>{1, 0}));
 }
 
+TEST(CoachOrderTest, AmongTiedStrokesTheOneThatLeavesTheZoneComesFirst) {
+  // Position play: three strokes the samples cannot tell apart; the simplest leaves a
+  // position worth 0.25 as planned, the others 0.9 and 0.85. The coach plays for the
+  // zone: the simpler of the two that leave it.
+  const std::vector<uint8_t> a = outcomes(30, 200), b = outcomes(28, 200, 3), c = outcomes(31, 200, 7);
+  ASSERT_FALSE(detail::significantly_different(a, b));
+  ASSERT_FALSE(detail::significantly_different(a, c));
+  detail::RankItem simple = item(a, 0.4), zone = item(b, 1.2), zone_harder = item(c, 1.6);
+  simple.landing = 0.25;
+  zone.landing = 0.85;
+  zone_harder.landing = 0.9;
+  EXPECT_EQ(detail::coach_order({simple, zone, zone_harder}), (std::vector<size_t>{1, 2, 0}));
+  // Landings within kLandingBand of each other are alike: the simplest again.
+  simple.landing = 0.82;
+  EXPECT_EQ(detail::coach_order({simple, zone, zone_harder}).front(), 0u);
+}
+
+TEST(CoachOrderTest, ALandingNeverLiftsAMeasurablyWorseStroke) {
+  const std::vector<uint8_t> good = outcomes(40, 200), poor = outcomes(10, 200);
+  ASSERT_TRUE(detail::significantly_different(good, poor));
+  detail::RankItem g = item(good, 1.0), p = item(poor, 0.2);
+  g.landing = 0.1;
+  p.landing = 1.0;
+  EXPECT_EQ(detail::coach_order({p, g}), (std::vector<size_t>{1, 0}));
+}
+
 TEST(CoachOrderTest, TheFirstStrokesIntervalIsNeverBelowAnother) {
   std::mt19937_64 rng(5);
   for (int trial = 0; trial < 300; ++trial) {
@@ -176,7 +202,10 @@ TEST(CoachOrderTest, TheFirstStrokesIntervalIsNeverBelowAnother) {
       sets.push_back(
           outcomes(static_cast<int>(rng() % (n / 3 + 1)), n, static_cast<int>(rng() % n)));
     std::vector<detail::RankItem> items;
-    for (const auto& s : sets) items.push_back(item(s, static_cast<double>(rng() % 1000) / 500.0));
+    for (const auto& s : sets) {
+      items.push_back(item(s, static_cast<double>(rng() % 1000) / 500.0));
+      if (trial % 2 == 1) items.back().landing = static_cast<double>(rng() % 1000) / 1000.0;
+    }
     const std::vector<size_t> order = detail::coach_order(items);
     ASSERT_EQ(order.size(), items.size());
     const detail::RankItem& first = items[order.front()];

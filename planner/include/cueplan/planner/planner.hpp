@@ -95,7 +95,8 @@ Estimate wilson_estimate(int successes, int samples);
 // that pot (and stop on the target), of P(next pot) from where the cue ball stops
 // (PositionField), its interval the band that P holds over the middle 80 % of those
 // landings (never narrower than the mean's normal 95 % interval) widened by kFieldError,
-// the closed form's allowance: what the player may be left with; P(both) is P(pot, position and next) counted on the same
+// the closed form's allowance: what the player may be left with (in a plan's reported
+// strokes it also holds P(next pot) where the stroke as planned stops, +- kFieldError); P(both) is P(pot, position and next) counted on the same
 // strokes, each landing's next pot drawn as made with its P (with a list of next pots,
 // the look-ahead value: position.hpp), the Wilson interval of that count.
 struct Success {
