@@ -1,7 +1,7 @@
 // Position play (planner/position.hpp): the cost of a position field and of a next-ball
 // plan, and how good the plans are, on generated snooker layouts.
 //
-//   build/bench/bench_position [--layouts N (30)] [--seed S (1)]
+//   build/bench/bench_position [--layouts N (30)] [--seed S (1)] [--pockets jawed|circles]
 //
 // Layouts: planner::known_pot_problems(N, S) (a cue ball, a red it can pot directly into
 // a pocket) made position play: the target dropped, a black added at a random place
@@ -20,6 +20,11 @@
 //              grid within the spin limit, the aim solved for each as the planner solves
 //              it): the positions the same pot reaches; also counted with ties (a landing
 //              at least as good as 80 % of them, within 0.005: several reach a sure pot).
+//
+// --pockets jawed plays the same layouts on the snooker template's jawed pockets (a
+// problem file's default table; the red was potted into a capture circle when the
+// layout was made, so some reds may no longer drop); the default, circles, keeps the
+// generated capture circles.
 //
 // Options for looking into the misses (the measure stays the same):
 //   --scan            per layout, of the grid's potting strokes above: the best field value
@@ -102,7 +107,7 @@ bool make_position_play(problems::Problem* p, std::mt19937_64& rng, const planne
 int main(int argc, char** argv) {
   int layouts = 30;
   uint64_t seed = 1;
-  bool scan = false, verbose = false;
+  bool scan = false, verbose = false, jawed = false;
   int evaluations = 0, starts = 0, robust = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -111,6 +116,14 @@ int main(int argc, char** argv) {
     else if (a == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (a == "--scan") scan = true;
     else if (a == "--verbose") verbose = true;
+    else if (a == "--pockets") {
+      const std::string kind = next();
+      if (kind != "jawed" && kind != "circles") {
+        fmt::print(stderr, "bench_position: --pockets takes jawed or circles, not '{}'\n", kind);
+        return 2;
+      }
+      jawed = kind == "jawed";
+    }
     else if (a == "--evaluations") evaluations = std::atoi(next().c_str());
     else if (a == "--starts") starts = std::atoi(next().c_str());
     else if (a == "--robust") robust = std::atoi(next().c_str());
@@ -144,6 +157,12 @@ int main(int argc, char** argv) {
   int scan_reach = 0;  // --scan: layouts where some potting stroke lands where the field is >= 0.6
   for (planner::KnownShotProblem& k : planner::known_pot_problems(layouts, seed, sim)) {
     problems::Problem p = k.problem;
+    if (jawed) {
+      // The snooker template's jawed pockets (a problem file's default table).
+      const physics::PocketPreset preset = *physics::pocket_preset("snooker");
+      p.scene.pockets = physics::jawed_pockets(p.scene.length, p.scene.width, preset.corner, preset.middle);
+      if (problems::validate(p)) continue;
+    }
     if (!make_position_play(&p, rng, options.noise)) continue;
     ++count;
     // Warm, then timed: the field alone.

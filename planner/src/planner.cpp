@@ -600,6 +600,33 @@ class Planning {
     return solved > 0;
   }
 
+  // Position play with a pot and no target: the search's landscape is the position
+  // field at the landing, flat where the next ball is screened or the cut too thin, so
+  // a global method sampling a few hundred strokes can miss a zone every potting stroke
+  // of some speed and spin reaches. A grid of strokes over speed, topspin and side (the
+  // aim solved for each, the pot's ball sent to the pocket's middle) is scored first,
+  // its families joining the reference run's: the polish starts from the best.
+  bool position_grid_wanted(const Task& task) const {
+    return task.next_field && task.pot_aim && !problem_.has_target && !options_.stop_at_first_solution &&
+           problem_.limits.spin_max > 0.0;
+  }
+  void position_grid(const SearchSpace& space, NominalObjective* objective) const {
+    constexpr int kSpeeds = 6;
+    constexpr double kTops[] = {-0.9, -0.45, 0.0, 0.45, 0.9};  // of the spin square
+    constexpr double kSides[] = {-0.6, 0.0, 0.6};
+    if (space.aim_searched() || space.dimension() != 4) return;  // speed, spin square, pot offset
+    std::vector<double> u(static_cast<size_t>(space.dimension()), 0.5);
+    for (int v = 0; v < kSpeeds; ++v)
+      for (double side : kSides)
+        for (double top : kTops) {
+          if (Clock::now() >= search_deadline_) return;
+          u[0] = (v + 0.5) / kSpeeds;
+          u[1] = 0.5 * (side + 1.0);
+          u[2] = 0.5 * (top + 1.0);
+          (*objective)(u.data());
+        }
+  }
+
   // 2. Global stage over the whole stroke space, remembering every family's best.
   void global_stage(const Task& task) {
     const SearchSpace space(problem_.limits, 0.0, std::nullopt, task.pot_aim.has_value());
@@ -637,23 +664,29 @@ class Planning {
       s.inner_x_tolerance = kXTolerance;
       s.inner_f_tolerance = kFTolerance;
       s.inner_step = kPolishStep;
+      // Position play: a grid of strokes first (position_grid), on top of the budget.
+      if (position_grid_wanted(task)) {
+        position_grid(space, &global);
+        grid_evaluations_ = global.evaluations();
+        s.max_simulations = budget + grid_evaluations_;
+      }
       // Two runs of half the budget each: the reference run, from kReferenceSeed, finds
       // the same families whatever the seed; the seeded run adds its own.
       const int reference_budget = std::max(1, budget / 2);
       const double time_s = s.max_time_s;
       s.max_evaluations = reference_budget;
-      s.max_simulations = reference_budget;
+      s.max_simulations = reference_budget + grid_evaluations_;
       s.max_time_s = 0.5 * time_s;
       s.inner_max_evaluations = std::max(20, s.max_evaluations / 10);
       nlopt_srand(detail::stream_seed(kReferenceSeed, 0));
       detail::run_stage(s, &x, &global);
       reference = global.take_families();
       x.assign(x.size(), 0.5);
-      s.max_evaluations = std::max(1, budget - global.evaluations());
-      s.max_simulations = budget;  // the counter runs on from the reference run's
+      s.max_evaluations = std::max(1, budget + grid_evaluations_ - global.evaluations());
+      s.max_simulations = budget + grid_evaluations_;  // the counter runs on from the reference run's
       s.max_time_s = std::max(1e-6, options_.global_share * search_seconds_left());
       nlopt_srand(detail::stream_seed(options_.seed, 0));
-      if (global.evaluations() < budget) detail::run_stage(s, &x, &global);
+      if (global.evaluations() < budget + grid_evaluations_) detail::run_stage(s, &x, &global);
     }
     result_.evaluations += global.evaluations();
     timed_out_ = search_seconds_left() <= 0.0;
@@ -691,13 +724,14 @@ class Planning {
   // stage chooses from (bench/README.md, "Planner", measured what that buys and costs).
   void polish_stage(const Task& task) {
     uint64_t stream = 1;
-    const int first_share = (options_.max_evaluations - result_.evaluations) / options_.local_starts;
+    const int first_share =
+        (options_.max_evaluations + grid_evaluations_ - result_.evaluations) / options_.local_starts;
     for (bool solved = false; !(solved && options_.stop_at_first_solution) && !timed_out_;) {
       std::vector<size_t> unfinished;
       for (size_t i = 0; i < polished_.size(); ++i)
         if (!polished_[i].converged()) unfinished.push_back(i);
       const bool continuing = !unfinished.empty();
-      const int left = options_.max_evaluations - result_.evaluations;
+      const int left = options_.max_evaluations + grid_evaluations_ - result_.evaluations;
       const size_t available = continuing ? unfinished.size() : starts_.size() - next_start_;
       // New starts get the first pass's share each, so none is started only to be cut
       // short; continuations share what is left.
@@ -872,7 +906,7 @@ class Planning {
     std::vector<int> simulations(parents.size(), 0);
     // A variant that misses is polished within what is left of the search's budget, less
     // the simulations that describe the variants.
-    const int left = options_.max_evaluations - result_.evaluations -
+    const int left = options_.max_evaluations + grid_evaluations_ - result_.evaluations -
                      2 * static_cast<int>(parents.size());
     const int polish_budget =
         std::min(kSimplifyEvaluations, std::max(0, left) / static_cast<int>(parents.size()));
@@ -1167,6 +1201,7 @@ class Planning {
   Candidate global_best_;
   std::vector<Candidate> starts_;  // the best stroke of each family, best first
   size_t next_start_ = 0;          // the first family not yet polished
+  int grid_evaluations_ = 0;       // simulations of the position grid, on top of the budget
   std::vector<Polish> polished_;
   bool timed_out_ = false;
   bool out_of_evaluations_ = false;
