@@ -33,6 +33,8 @@
 //                     12 best;
 //   --verbose         the best stroke and the alternatives, each with its landing's field
 //                     value and its success estimates;
+//   --only N          plan and report only the N-th plannable layout (the others are
+//                     still generated, so the layouts stay the same);
 //   --evaluations N, --starts K, --robust N
 //                     the planner's max_evaluations, local_starts, and its robust polish
 //                     with robust_max_evaluations N.
@@ -108,7 +110,7 @@ int main(int argc, char** argv) {
   int layouts = 30;
   uint64_t seed = 1;
   bool scan = false, verbose = false, jawed = false;
-  int evaluations = 0, starts = 0, robust = 0;
+  int evaluations = 0, starts = 0, robust = 0, only = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -124,6 +126,7 @@ int main(int argc, char** argv) {
       }
       jawed = kind == "jawed";
     }
+    else if (a == "--only") only = std::atoi(next().c_str());
     else if (a == "--evaluations") evaluations = std::atoi(next().c_str());
     else if (a == "--starts") starts = std::atoi(next().c_str());
     else if (a == "--robust") robust = std::atoi(next().c_str());
@@ -165,6 +168,7 @@ int main(int argc, char** argv) {
     }
     if (!make_position_play(&p, rng, options.noise)) continue;
     ++count;
+    if (only > 0 && count != only) continue;
     // Warm, then timed: the field alone.
     (void)planner::PositionField::for_problem(p, options.noise);
     const Clock::time_point f0 = Clock::now();

@@ -73,6 +73,8 @@ constexpr int kSimplifyEvaluations = 150;  // polish of a side variant, held sid
 constexpr int kMinPolish = 10;             // fewer left than this: a variant is not polished
 constexpr double kSearchTimeShare = 0.75;  // of max_time_s: the global stage and the polish
 constexpr double kRefineTimeShare = 0.9;   // and the exact verification and side variants
+constexpr double kZoneGridScore = 0.4;  // position grid strokes worth >= 0.6 of the best
+constexpr int kZoneCandidates = 3;      // of them, raced beside the polished shots
 constexpr size_t kOpeningRound = 10;  // noise draws every candidate is sampled on first,
 constexpr size_t kFirstRound = 50;    // then on these before the race may drop any
 constexpr double kSameLanding = 1e-3;      // of the tolerance: side that moved nothing  // of max_time_s, for the global stage and the polish
@@ -138,6 +140,7 @@ class NominalObjective {
     const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &evaluations_);
     const double f = detail::shot_score(task_.problem, r, enforce_rigid_limit_) + task_.next_score(r);
     last_ = {f, r.final_position, r.status == physics::ShotStatus::rest};
+    last_shot_ = shot;
     if (f < best_.score) best_ = {shot, f};
     best_history_.push_back(best_.score);
     if (record_families_) {
@@ -152,6 +155,7 @@ class NominalObjective {
   const Candidate& best() const { return best_; }
   // The stroke last scored: its score and where it stopped.
   const detail::Landing& last() const { return last_; }
+  const physics::Shot& last_shot() const { return last_shot_; }
   // True when the best score has stopped falling toward `target` (see kHorizon).
   bool stalled(double target) const {
     const size_t n = best_history_.size();
@@ -175,6 +179,7 @@ class NominalObjective {
   std::vector<double> best_history_;  // best score after each evaluation
   Candidate best_;
   detail::Landing last_;
+  physics::Shot last_shot_;
   std::map<FamilyKey, Candidate> families_;
 };
 
@@ -457,6 +462,7 @@ class Planning {
                               : std::make_shared<const PositionField>(
                                     PositionField::for_problem(problem_, options_.noise));
         result_.position_field = task.next_field;
+        task.landing_speed_sd = options_.noise.speed * options_.noise.scale;
       }
       if (direct_search()) {
         global_stage(task);
@@ -605,26 +611,74 @@ class Planning {
   // a global method sampling a few hundred strokes can miss a zone every potting stroke
   // of some speed and spin reaches. A grid of strokes over speed, topspin and side (the
   // aim solved for each, the pot's ball sent to the pocket's middle) is scored first,
-  // its families joining the reference run's: the polish starts from the best.
+  // its families joining the reference run's: the polish starts from the best. Its
+  // strokes, and a finer grid's, that land where the next pot is worth much are kept
+  // for add_zone_candidates.
   bool position_grid_wanted(const Task& task) const {
     return task.next_field && task.pot_aim && !problem_.has_target && !options_.stop_at_first_solution &&
            problem_.limits.spin_max > 0.0;
   }
-  void position_grid(const SearchSpace& space, NominalObjective* objective) const {
+  void position_grid(const Task& task, const SearchSpace& space, NominalObjective* objective) {
     constexpr int kSpeeds = 6;
     constexpr double kTops[] = {-0.9, -0.45, 0.0, 0.45, 0.9};  // of the spin square
     constexpr double kSides[] = {-0.6, 0.0, 0.6};
     if (space.aim_searched() || space.dimension() != 4) return;  // speed, spin square, pot offset
     std::vector<double> u(static_cast<size_t>(space.dimension()), 0.5);
+    const auto score = [&](NominalObjective* scorer, double speed_u, double side, double top) {
+      u[0] = speed_u;
+      u[1] = 0.5 * (side + 1.0);
+      u[2] = 0.5 * (top + 1.0);
+      (*scorer)(u.data());
+      if (scorer->last().score <= kZoneGridScore * Task::kNextScale)
+        zone_grid_.push_back(scorer->last_shot());
+    };
     for (int v = 0; v < kSpeeds; ++v)
       for (double side : kSides)
         for (double top : kTops) {
           if (Clock::now() >= search_deadline_) return;
-          u[0] = (v + 0.5) / kSpeeds;
-          u[1] = 0.5 * (side + 1.0);
-          u[2] = 0.5 * (top + 1.0);
-          (*objective)(u.data());
+          score(objective, (v + 0.5) / kSpeeds, side, top);
         }
+    // A finer grid for the zone candidates alone (its families are not polished: they
+    // would crowd out the global method's): 10 speeds x 7 topspins x 5 sides.
+    constexpr int kFineSpeeds = 10;
+    constexpr double kFineTops[] = {-0.9, -0.6, -0.3, 0.0, 0.3, 0.6, 0.9};
+    constexpr double kFineSides[] = {-0.6, -0.3, 0.0, 0.3, 0.6};
+    NominalObjective fine(task, space, search_sim_, options_.enforce_rigid_limit, false);
+    for (int v = 0; v < kFineSpeeds; ++v)
+      for (double side : kFineSides)
+        for (double top : kFineTops) {
+          if (Clock::now() >= search_deadline_) break;
+          score(&fine, (v + 0.5) / kFineSpeeds, side, top);
+        }
+    zone_grid_evaluations_ = fine.evaluations();  // counted after the polish: not its budget
+  }
+
+  // The grid's strokes that pot and leave the cue ball where the next pot is worth at
+  // least (1 - kZoneGridScore) of the best, ranked by their landing's worth with a
+  // stroke's spread around it (Task::landing_worth): the best kZoneCandidates of them,
+  // described as the report describes, join the polished shots in the race. The
+  // polish settles where the landing is first worth the best, often a zone's edge; a
+  // grid stroke in its middle, where the noisy strokes also stop, may succeed as often
+  // and leave the cue ball surely in the zone.
+  void add_zone_candidates(const Task& task) {
+    result_.evaluations += zone_grid_evaluations_;
+    if (zone_grid_.empty() || refine_seconds_left() <= 0.0) return;
+    std::vector<std::pair<double, physics::Shot>> ranked;
+    for (const physics::Shot& shot : zone_grid_) {
+      const physics::ShotResult r = task.simulate(shot, search_sim_);
+      ++result_.evaluations;
+      if (r.status == physics::ShotStatus::rest) ranked.emplace_back(task.landing_worth(r), shot);
+    }
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    int added = 0;
+    for (const auto& [worth, shot] : ranked) {
+      if (added == kZoneCandidates) break;
+      Final f = described(task, shot);
+      if (!f.shot.solves) continue;
+      finals_.push_back(std::move(f));
+      ++added;
+    }
   }
 
   // 2. Global stage over the whole stroke space, remembering every family's best.
@@ -666,7 +720,7 @@ class Planning {
       s.inner_step = kPolishStep;
       // Position play: a grid of strokes first (position_grid), on top of the budget.
       if (position_grid_wanted(task)) {
-        position_grid(space, &global);
+        position_grid(task, space, &global);
         grid_evaluations_ = global.evaluations();
         s.max_simulations = budget + grid_evaluations_;
       }
@@ -854,6 +908,7 @@ class Planning {
     }
     finals_.clear();
     for (auto& [family, f] : by_family) finals_.push_back(std::move(f));
+    add_zone_candidates(task);
     std::stable_sort(finals_.begin(), finals_.end(), nominally_better);
     for (Final& f : finals_) f.id = next_id_++;
   }
@@ -1202,6 +1257,8 @@ class Planning {
   std::vector<Candidate> starts_;  // the best stroke of each family, best first
   size_t next_start_ = 0;          // the first family not yet polished
   int grid_evaluations_ = 0;       // simulations of the position grid, on top of the budget
+  std::vector<physics::Shot> zone_grid_;  // the grid's strokes that pot into the zone's reach
+  int zone_grid_evaluations_ = 0;         // simulations of the finer grid
   std::vector<Polish> polished_;
   bool timed_out_ = false;
   bool out_of_evaluations_ = false;

@@ -9,12 +9,15 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "cueplan/planner/planner.hpp"
 #include "cueplan/problems/problem.hpp"
+#include "task.hpp"
 
 namespace cueplan::planner {
 namespace {
@@ -281,6 +284,53 @@ TEST(PositionFieldValidation, AgreesWithThePlannersPotChanceOverTheTable) {
   const double rho = rank_correlation(field, planned);
   std::cout << "largest difference " << worst << ", rank correlation " << rho << "\n";
   EXPECT_GE(rho, 0.8);
+}
+
+// A landing's worth with a stroke's spread (Task::landing_worth, which ranks the
+// position grid's strokes): the value itself without a speed error; about the value in
+// the middle of a flat zone; well below it on a zone's edge, where one speed error
+// further or shorter leaves the next pot worth little.
+TEST(LandingWorth, FallsOnAZonesEdgeAndNotInItsMiddle) {
+  const problems::Problem p = red_then_black();
+  detail::Task task(p);
+  task.next_field = std::make_shared<const PositionField>(PositionField::for_problem(p, NoiseModel{}));
+  const PositionField& f = *task.next_field;
+  // A stroke at 2 m/s that meets the red and runs 1 m along +x to `end`: the spread is
+  // 2 x 0.075 / 2 x 1 m = 7.5 cm each way.
+  const auto stroke_to = [](Vec2 end) {
+    physics::ShotResult r;
+    r.status = physics::ShotStatus::rest;
+    r.final_position = end;
+    physics::ShotEvent strike, contact, rest;
+    strike.type = physics::EventType::strike;
+    strike.position = {end.x - 1.5, end.y};
+    strike.velocity = {2.0, 0.0};
+    contact.type = physics::EventType::ball_contact;
+    contact.position = {end.x - 1.0, end.y};
+    rest.type = physics::EventType::rest;
+    rest.position = end;
+    r.events = {strike, contact, rest};
+    return r;
+  };
+  const double best = f.best_value();
+  const double d = 0.075;
+  std::optional<Vec2> middle, edge;
+  for (int j = 0; j < f.rows(); ++j)
+    for (int i = 0; i < f.columns(); ++i) {
+      const Vec2 c = f.cell_centre(i, j);
+      if (f.value(c) < 0.95 * best) continue;
+      double low = 1.0;
+      for (const Vec2 o : {Vec2{d, 0.0}, Vec2{-d, 0.0}, Vec2{0.0, d}, Vec2{0.0, -d}})
+        low = std::min(low, f.value({c.x + o.x, c.y + o.y}));
+      if (!middle && low >= 0.95 * best) middle = c;
+      if (!edge && low < 0.3 * best) edge = c;
+    }
+  ASSERT_TRUE(middle && edge) << "the layout's zone has no flat middle or sharp edge";
+  task.landing_speed_sd = 0.0;
+  EXPECT_EQ(task.landing_worth(stroke_to(*edge)), f.value(*edge));
+  task.landing_speed_sd = 0.075;
+  EXPECT_NEAR(task.landing_worth(stroke_to(*middle)), f.value(*middle), 0.05 * best);
+  EXPECT_LT(task.landing_worth(stroke_to(*edge)), f.value(*edge) - 0.1 * best);
 }
 
 // Position play end to end on the shipped example: the planner pots the red, reports
