@@ -650,7 +650,7 @@ class Planning {
           if (Clock::now() >= search_deadline_) break;
           score(&fine, (v + 0.5) / kFineSpeeds, side, top);
         }
-    zone_grid_evaluations_ = fine.evaluations();  // counted after the polish: not its budget
+    zone_grid_evaluations_ = fine.evaluations();  // counted by add_zone_candidates
   }
 
   // The grid's strokes that pot and leave the cue ball where the next pot is worth at
@@ -661,7 +661,14 @@ class Planning {
   // grid stroke in its middle, where the noisy strokes also stop, may succeed as often
   // and leave the cue ball surely in the zone.
   void add_zone_candidates(const Task& task) {
+    // Every simulation here, the finer grid's included, comes on top of the budget:
+    // the side variants that follow keep theirs.
+    const int before = result_.evaluations;
     result_.evaluations += zone_grid_evaluations_;
+    add_zone_strokes(task);
+    grid_evaluations_ += result_.evaluations - before;
+  }
+  void add_zone_strokes(const Task& task) {
     if (zone_grid_.empty() || refine_seconds_left() <= 0.0) return;
     std::vector<std::pair<double, physics::Shot>> ranked;
     for (const physics::Shot& shot : zone_grid_) {
