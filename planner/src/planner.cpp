@@ -644,12 +644,9 @@ class Planning {
     constexpr double kFineTops[] = {-0.9, -0.6, -0.3, 0.0, 0.3, 0.6, 0.9};
     constexpr double kFineSides[] = {-0.6, -0.3, 0.0, 0.3, 0.6};
     NominalObjective fine(task, space, search_sim_, options_.enforce_rigid_limit, false);
-    for (int v = 0; v < kFineSpeeds; ++v)
+    for (int v = 0; v < kFineSpeeds && Clock::now() < search_deadline_; ++v)
       for (double side : kFineSides)
-        for (double top : kFineTops) {
-          if (Clock::now() >= search_deadline_) break;
-          score(&fine, (v + 0.5) / kFineSpeeds, side, top);
-        }
+        for (double top : kFineTops) score(&fine, (v + 0.5) / kFineSpeeds, side, top);
     zone_grid_evaluations_ = fine.evaluations();  // counted by add_zone_candidates
   }
 
