@@ -137,7 +137,7 @@ class NominalObjective {
 
   double operator()(const double* u) {
     physics::Shot shot;
-    const physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &evaluations_);
+    physics::ShotResult r = play(task_, space_, u, simulation_, &offset_hint_, &shot, &evaluations_);
     const double f = detail::shot_score(task_.problem, r, enforce_rigid_limit_) + task_.next_score(r);
     last_ = {f, r.final_position, r.status == physics::ShotStatus::rest};
     last_shot_ = shot;
@@ -147,6 +147,7 @@ class NominalObjective {
       auto [it, inserted] = families_.try_emplace(detail::family_key(shot, r));
       if (f < it->second.score) it->second = {shot, f};
     }
+    last_result_ = std::move(r);
     return f;
   }
 
@@ -156,6 +157,7 @@ class NominalObjective {
   // The stroke last scored: its score and where it stopped.
   const detail::Landing& last() const { return last_; }
   const physics::Shot& last_shot() const { return last_shot_; }
+  const physics::ShotResult& last_result() const { return last_result_; }
   // True when the best score has stopped falling toward `target` (see kHorizon).
   bool stalled(double target) const {
     const size_t n = best_history_.size();
@@ -180,6 +182,7 @@ class NominalObjective {
   Candidate best_;
   detail::Landing last_;
   physics::Shot last_shot_;
+  physics::ShotResult last_result_;
   std::map<FamilyKey, Candidate> families_;
 };
 
@@ -629,8 +632,8 @@ class Planning {
       u[1] = 0.5 * (side + 1.0);
       u[2] = 0.5 * (top + 1.0);
       (*scorer)(u.data());
-      if (scorer->last().score <= kZoneGridScore * Task::kNextScale)
-        zone_grid_.push_back(scorer->last_shot());
+      if (scorer->last().score <= kZoneGridScore * Task::kNextScale && scorer->last().at_rest)
+        zone_grid_.emplace_back(task.landing_worth(scorer->last_result()), scorer->last_shot());
     };
     for (int v = 0; v < kSpeeds; ++v)
       for (double side : kSides)
@@ -662,27 +665,18 @@ class Planning {
     // the side variants that follow keep theirs.
     const int before = result_.evaluations;
     result_.evaluations += zone_grid_evaluations_;
-    add_zone_strokes(task);
-    grid_evaluations_ += result_.evaluations - before;
-  }
-  void add_zone_strokes(const Task& task) {
-    if (zone_grid_.empty() || refine_seconds_left() <= 0.0) return;
-    std::vector<std::pair<double, physics::Shot>> ranked;
-    for (const physics::Shot& shot : zone_grid_) {
-      const physics::ShotResult r = task.simulate(shot, search_sim_);
-      ++result_.evaluations;
-      if (r.status == physics::ShotStatus::rest) ranked.emplace_back(task.landing_worth(r), shot);
-    }
-    std::stable_sort(ranked.begin(), ranked.end(),
+    std::stable_sort(zone_grid_.begin(), zone_grid_.end(),
                      [](const auto& a, const auto& b) { return a.first > b.first; });
+    const bool in_time = refine_seconds_left() > 0.0;
     int added = 0;
-    for (const auto& [worth, shot] : ranked) {
-      if (added == kZoneCandidates) break;
+    for (const auto& [worth, shot] : zone_grid_) {
+      if (!in_time || added == kZoneCandidates) break;
       Final f = described(task, shot);
       if (!f.shot.solves) continue;
       finals_.push_back(std::move(f));
       ++added;
     }
+    grid_evaluations_ += result_.evaluations - before;
   }
 
   // 2. Global stage over the whole stroke space, remembering every family's best.
@@ -1261,7 +1255,8 @@ class Planning {
   std::vector<Candidate> starts_;  // the best stroke of each family, best first
   size_t next_start_ = 0;          // the first family not yet polished
   int grid_evaluations_ = 0;       // simulations of the position grid, on top of the budget
-  std::vector<physics::Shot> zone_grid_;  // the grid's strokes that pot into the zone's reach
+  // The grids' strokes that pot into the zone's reach, each with its landing's worth.
+  std::vector<std::pair<double, physics::Shot>> zone_grid_;
   int zone_grid_evaluations_ = 0;         // simulations of the finer grid
   std::vector<Polish> polished_;
   bool timed_out_ = false;
