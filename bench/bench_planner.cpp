@@ -17,7 +17,7 @@
 // pairings only; "none" skips them), --tight-evaluations N (the second pairing table's
 // budget, 400; 0 skips it), --sweep-global M / --sweep-local M (the methods the time sweep is
 // centred on; default: PlannerOptions' defaults), --no-sweep, --out FILE (JSON),
-// --per-run (every plan's status, time and evaluations in the JSON too); and
+// --per-run (every plan's status, time, CPU time, evaluations and answer P in the JSON too); and
 // to try other settings: --max-evaluations N, --global-share F, --local-starts N,
 // --samples N, --stop-at-first-solution.
 //
@@ -205,10 +205,11 @@ std::string json_summary(const Summary& s, bool per_run) {
     const Run& r = s.runs[i];
     std::snprintf(buf, sizeof buf,
                   "%s{\"set\": \"%s\", \"problem\": \"%s\", \"seed\": %llu, \"status\": \"%s\", "
-                  "\"time_ms\": %.4g, \"evaluations\": %d, \"families\": %d}",
+                  "\"time_ms\": %.4g, \"cpu_ms\": %.4g, \"evaluations\": %d, \"families\": %d, "
+                  "\"answer_p\": %.4g, \"witness_p\": %.4g}",
                   i ? ", " : "", r.set.c_str(), r.name.c_str(),
                   static_cast<unsigned long long>(r.seed), r.status.c_str(), 1e3 * r.time_s,
-                  r.evaluations, r.families);
+                  1e3 * r.cpu_s, r.evaluations, r.families, r.answer_p, r.witness_p);
     out += buf;
   }
   return out + "]}";

@@ -2,8 +2,9 @@
 //
 // The polynomial is split at the roots of its derivative (found the same way, one
 // degree lower) into monotone pieces; a piece whose ends differ in sign holds exactly
-// one root, found by bisection to rounding. No root with a sign change is missed,
-// however close two roots are; a root without a sign change (a graze) is ignored.
+// one root, found to rounding by Newton's method kept inside the bracket (bisection
+// where Newton is slow). No root with a sign change is missed, however close two roots
+// are; a root without a sign change (a graze) is ignored.
 #pragma once
 
 #include <algorithm>
@@ -21,19 +22,34 @@ inline double evaluate(const double* c, int degree, double t) {
   return v;
 }
 
-// One root of the polynomial in [a, b] given opposite signs at the ends.
-inline double bisect(const double* c, int degree, double a, double b, double fa) {
+// One root of the polynomial in [a, b] given opposite signs at the ends (fa at a, fb at
+// b) on a monotone piece: Newton steps from the secant's root, each kept inside the
+// bracket of the signs seen so far; a step that would not move steps to the neighbouring
+// double instead, so that the bracket closes. It ends at a double where the polynomial
+// is zero or between two neighbouring doubles of opposite signs, as bisection would,
+// in 5-7 evaluations instead of about 60 (bench/README.md, "Shot"). Where rounding
+// makes the signs near the root disagree (a flat crossing), any of the sign changes may
+// be returned: each is a root to rounding. Bisection takes over after kNewtonSteps.
+inline double bracketed_root(const double* c, int degree, double a, double b, double fa,
+                             double fb) {
+  constexpr int kNewtonSteps = 12;
+  const bool negative_at_a = fa < 0.0;
+  double x = a + (b - a) * (fa / (fa - fb));
   for (int i = 0; i < 200; ++i) {
-    const double m = 0.5 * (a + b);
-    if (m <= a || m >= b) break;
-    const double fm = evaluate(c, degree, m);
-    if (fm == 0.0) return m;
-    if ((fm < 0.0) == (fa < 0.0)) {
-      a = m;
-      fa = fm;
-    } else {
-      b = m;
+    if (!(x > a && x < b)) x = 0.5 * (a + b);
+    if (!(x > a && x < b)) break;  // a and b are neighbours
+    const double fx = evaluate(c, degree, x);
+    if (fx == 0.0) return x;
+    if ((fx < 0.0) == negative_at_a) a = x;
+    else b = x;
+    if (i >= kNewtonSteps) {
+      x = 0.5 * (a + b);
+      continue;
     }
+    double slope = degree * c[degree];
+    for (int k = degree - 1; k >= 1; --k) slope = slope * x + k * c[k];
+    const double next = x - fx / slope;
+    x = next != x ? next : x == a ? std::nextafter(a, b) : std::nextafter(b, a);
   }
   return 0.5 * (a + b);
 }
@@ -70,7 +86,7 @@ inline int roots_in(const double* c, int degree, double lo, double hi, double* o
     if (f == 0.0) {
       if (n == 0 || out[n - 1] != cuts[i]) out[n++] = cuts[i];
     } else if (f_prev != 0.0 && (f < 0.0) != (f_prev < 0.0)) {
-      out[n++] = bisect(c, degree, cuts[i - 1], cuts[i], f_prev);
+      out[n++] = bracketed_root(c, degree, cuts[i - 1], cuts[i], f_prev, f);
     }
     f_prev = f;
   }

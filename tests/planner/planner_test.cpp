@@ -369,14 +369,19 @@ TEST(RankingTest, SideThatChangesNothingIsNotRecommended) {
 // draw stroke. Judged on fresh draws (another seed, 1000 strokes), the answer now
 // succeeds at least as often as the file's stroke and more often than the old answer
 // (3.5 % against 1.6 % since the search's reference half is seed-independent; the
-// seed-1 answer before was measurably better, issue 31).
+// seed-1 answer before was measurably better, issue 31). Planned with 3000 simulations:
+// at the default 2000 whether the search meets the 3-cushion follow family that succeeds
+// (5-8 %) depends on rounding in its path - it did at 2000 and 2400 and did not at 1600,
+// 1800 and 2200 simulations before the event solver's root finder changed, and does
+// not at 2000 since; from 2800 to 3200 it does with either.
 TEST(RankingTest, ThreeRailAnswerSucceedsAtLeastAsOftenAsThePlainFollowStroke) {
   // On the capture-circle pockets the strokes above were measured on (the file's
   // default is now the snooker preset's jaws, whose corners let other strokes through).
   problems::Problem p = shipped("three_rail_position.yaml");
   p.scene.pockets = physics::standard_pockets(p.scene.length, p.scene.width,
                                               physics::kDefaultPocketRadius);
-  const PlannerOptions o = exact_options();
+  PlannerOptions o = exact_options();
+  o.max_evaluations = 3000;
   const PlanResult r = plan(p, o);
   ASSERT_EQ(r.status, PlanStatus::solved) << r.message;
   const auto fresh = [&](const physics::Shot& shot) {

@@ -282,7 +282,9 @@ class Solve(unittest.TestCase):
         Han's closed form: each problem gets its own."""
         han = {"cue_ball": [0.9, 1.2], "target": [2.2, 1.1], "limits": {"cushions": 1},
                "physics": {"cushion_model": "han_2005"}}
-        records = cueplan.solve_many([ONE_RAIL, han], threads=2, max_evaluations=300, samples=0, max_time=120)
+        # 600 simulations: one_rail_position is solved from 350 up (300 is on the edge: whether
+        # the search lands within it depends on rounding in its path).
+        records = cueplan.solve_many([ONE_RAIL, han], threads=2, max_evaluations=600, samples=0, max_time=120)
         self.assertEqual([r["status"] for r in records], ["solved", "solved"], records)
 
     def test_spin_map_cells(self):
