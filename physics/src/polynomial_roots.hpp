@@ -26,10 +26,11 @@ inline double evaluate(const double* c, int degree, double t) {
 // b) on a monotone piece: Newton steps from the secant's root, each kept inside the
 // bracket of the signs seen so far; a step that would not move steps to the neighbouring
 // double instead, so that the bracket closes. It ends at a double where the polynomial
-// is zero or between two neighbouring doubles of opposite signs, as bisection would,
-// in about 6 evaluations instead of about 57 (bench/bench_roots.cpp; bench/README.md, "Shot"). Where rounding
-// makes the signs near the root disagree (a flat crossing), any of the sign changes may
-// be returned: each is a root to rounding. Bisection takes over after kNewtonSteps.
+// is zero or between two neighbouring doubles of opposite signs, as bisection would, in
+// about 6 evaluations instead of about 57 (bench/bench_roots.cpp; bench/README.md,
+// "Shot"). Where rounding makes the signs near the root disagree (a flat crossing), any
+// of the sign changes may be returned: each is a root to rounding. Bisection takes over
+// after kNewtonSteps.
 inline double bracketed_root(const double* c, int degree, double a, double b, double fa,
                              double fb) {
   constexpr int kNewtonSteps = 12;

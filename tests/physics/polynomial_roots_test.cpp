@@ -89,8 +89,8 @@ TEST(PolynomialRoots, FindsEveryWellSeparatedRootToRounding) {
     const int m = roots_in(c.data(), degree, 0.0, 5.0, found);
     ASSERT_EQ(m, n) << "trial " << trial;
     for (int i = 0; i < m; ++i) {
-      EXPECT_NEAR(found[i], roots[static_cast<size_t>(i)], allowance(c, roots[static_cast<size_t>(i)]))
-          << "trial " << trial << " root " << i;
+      const double root = roots[static_cast<size_t>(i)];
+      EXPECT_NEAR(found[i], root, allowance(c, root)) << "trial " << trial << " root " << i;
       EXPECT_TRUE(is_rounded_root(c, found[i])) << "trial " << trial << " root " << i;
       if (i > 0) {
         EXPECT_LT(found[i - 1], found[i]);
@@ -124,7 +124,8 @@ TEST(PolynomialRoots, CushionContactsMatchTheQuadraticFormula) {
     } else {
       const long double disc = b * b - 4.0L * a * k;
       if (disc >= 0.0L) {
-        const long double s = b >= 0.0L ? -0.5L * (b + std::sqrt(disc)) : -0.5L * (b - std::sqrt(disc));
+        const long double s =
+            b >= 0.0L ? -0.5L * (b + std::sqrt(disc)) : -0.5L * (b - std::sqrt(disc));
         const long double r1 = s / a, r2 = k / s;
         for (long double r : {r1, r2})
           if (r >= 0.0L && r < first) first = r;
