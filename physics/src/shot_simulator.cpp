@@ -674,9 +674,11 @@ class ShotRun {
       part = jaw_part(which);
     }
     const Vec2 n = !jaw ? lines_[which].normal : jaw_normal(*w, part, b.p);
-    const std::string where =
-        !jaw ? fmt::format("cushion {}", which)
-             : fmt::format("pocket {} jaw part {}", jaw_pocket(which), part);
+    // Put in words only when the contact fails.
+    const auto where = [&] {
+      return !jaw ? fmt::format("cushion {}", which)
+                  : fmt::format("pocket {} jaw part {}", jaw_pocket(which), part);
+    };
     const Vec2 x_axis{n.y, -n.x};
     BallState in;
     in.velocity = {dot(b.v, x_axis), dot(b.v, n), 0.0};
@@ -693,17 +695,17 @@ class ShotRun {
       end_shot(ShotStatus::impact_failed,
                fmt::format("{}{}: the ball is pressed against it with no approach speed "
                            "(sliding along a cushion is not modelled)",
-                           whose(k), where));
+                           whose(k), where()));
       return;
     }
     if (impact_error_) {
       end_shot(ShotStatus::impact_failed,
-               fmt::format("{}{}: {}", whose(k), where, impact_error_->message()));
+               fmt::format("{}{}: {}", whose(k), where(), impact_error_->message()));
       return;
     }
     const ImpactResult out = detail::resolve_checked_impact(scene_.ball_and_cushion, in, impact_);
     if (!usable(out.status)) {
-      end_shot(ShotStatus::impact_failed, fmt::format("{}{}: {}", whose(k), where, out.message));
+      end_shot(ShotStatus::impact_failed, fmt::format("{}{}: {}", whose(k), where(), out.message));
       return;
     }
     b.v = out.outgoing.velocity.x * x_axis + out.outgoing.velocity.y * n;

@@ -61,7 +61,7 @@ double shot_score(const problems::Problem& problem, const physics::ShotResult& r
 double pot_penalty(const problems::Problem& problem, const physics::ShotResult& result) {
   using problems::Failure;
   if (!problem.pot && !problem.first_contact) return 0.0;
-  switch (problems::check_outcome(problem, result).failure) {
+  switch (problems::outcome_failure(problem, result)) {
     case Failure::first_contact: return 2.0 * kPotPenalty;
     case Failure::pot_missed:
     case Failure::wrong_pocket:

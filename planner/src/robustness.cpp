@@ -104,7 +104,7 @@ double soft_success(const Task& task, const physics::Shot& shot,
     const physics::ShotResult r = task.simulate(s, simulation);
     ++*simulations;
     // At rest after allowed cushions (and, with a pot, the pot made cleanly).
-    if (!problems::check_outcome(problem, r).pot_made()) continue;
+    if (!problems::pot_made(problems::outcome_failure(problem, r))) continue;
     // A Cauchy kernel: 1 on the target, 1/2 at the tolerance, and still telling near
     // misses from wide ones a few tolerances out, where most noisy strokes land.
     const double x = problems::miss_distance(problem, r) / problem.tolerance;
@@ -144,7 +144,7 @@ std::vector<NoisyLanding> noisy_landings(const problems::Problem& problem, const
     if (!detail::noisy_stroke(shot, d, noise, radius, miscue, squirt, &s)) continue;
     const physics::ShotResult r = task.simulate(s, quiet);
     if (r.status != physics::ShotStatus::rest) continue;
-    out.push_back({r.final_position, problems::check_outcome(problem, r).pot_made()});
+    out.push_back({r.final_position, problems::pot_made(problems::outcome_failure(problem, r))});
   }
   return out;
 }
@@ -180,7 +180,7 @@ double next_uniform(size_t draw) {
 }
 
 uint8_t judge(const Task& task, const physics::ShotResult& result, size_t draw, float* next_p) {
-  const problems::Verdict v = problems::check_outcome(task.problem, result);
+  const problems::Verdict v{problems::outcome_failure(task.problem, result), {}};
   if (next_p) *next_p = 0.0f;
   if (task.next_field && v.pot_made()) {
     // Position play: the next pot from where the cue ball stops, drawn by this draw's

@@ -60,7 +60,7 @@ void land(const detail::Task& task, double speed, double aim_deg, double lateral
     shot = aimed.shot;
     r = std::move(aimed.result);
     using problems::Failure;
-    const Failure f = problems::check_outcome(problem, r).failure;
+    const Failure f = problems::outcome_failure(problem, r);
     p->pots = aimed.found && f != Failure::first_contact && f != Failure::pot_missed &&
               f != Failure::wrong_pocket && f != Failure::other_ball_pocketed &&
               f != Failure::no_outcome;

@@ -352,7 +352,7 @@ int cushions_before_contact(const physics::ShotResult& result) {
 }
 
 bool reaches_target(const Problem& problem, const physics::ShotResult& result) {
-  return check_outcome(problem, result).solves();
+  return outcome_failure(problem, result) == Failure::none;
 }
 
 const char* to_string(Failure failure) {
@@ -374,7 +374,13 @@ const char* to_string(Failure failure) {
 
 namespace {
 
-Verdict broken(Failure failure, std::string reason) { return {failure, std::move(reason)}; }
+// A broken condition; its reason put in words only when `kExplain` (the planner's inner
+// loops count outcomes by the thousand and never show why).
+template <bool kExplain, class Reason>
+Verdict broken(Failure failure, Reason&& reason) {
+  if constexpr (kExplain) return {failure, std::string(reason())};
+  else return {failure, {}};
+}
 
 std::string count_range(int lo, int hi) {
   return lo == hi ? fmt::format("{}", lo) : fmt::format("{}-{}", lo, hi);
@@ -386,50 +392,57 @@ const physics::BallOutcome* outcome_of(const physics::ShotResult& result, const 
   return nullptr;
 }
 
-}  // namespace
-
-Verdict check_outcome(const Problem& problem, const physics::ShotResult& result) {
+// check_outcome's judgement; with `kExplain` false the reason is left empty.
+template <bool kExplain>
+Verdict judge_outcome(const Problem& problem, const physics::ShotResult& result) {
   using physics::ShotStatus;
   switch (result.status) {
     case ShotStatus::rest: break;
-    case ShotStatus::pocketed: return broken(Failure::cue_ball_pocketed, "the cue ball is pocketed");
+    case ShotStatus::pocketed:
+      return broken<kExplain>(Failure::cue_ball_pocketed, [] { return "the cue ball is pocketed"; });
     case ShotStatus::hit_obstacle: {
       for (const physics::BallOutcome& b : result.balls)
         if (!b.events.empty() && b.events.back().type == physics::EventType::obstacle)
-          return broken(Failure::obstacle,
-                        fmt::format("{} touches obstacles[{}]",
-                                    b.name == physics::kCueBallName ? "the cue ball" : b.name,
-                                    b.events.back().index));
-      return broken(Failure::obstacle, "a ball touches an obstacle ball");
+          return broken<kExplain>(Failure::obstacle, [&] {
+            return fmt::format("{} touches obstacles[{}]",
+                               b.name == physics::kCueBallName ? "the cue ball" : b.name,
+                               b.events.back().index);
+          });
+      return broken<kExplain>(Failure::obstacle, [] { return "a ball touches an obstacle ball"; });
     }
     default:
-      return broken(Failure::no_outcome, fmt::format("no outcome ({}): {}",
-                                                     physics::to_string(result.status),
-                                                     result.message));
+      return broken<kExplain>(Failure::no_outcome, [&] {
+        return fmt::format("no outcome ({}): {}", physics::to_string(result.status),
+                           result.message);
+      });
   }
   const std::string first = problem.required_first_contact();
   if (!first.empty()) {
     const int k = result.first_contact;
     if (k <= 0 || k >= static_cast<int>(result.balls.size()))
-      return broken(Failure::first_contact, fmt::format("the cue ball strikes no ball ({} first)", first));
+      return broken<kExplain>(Failure::first_contact, [&] {
+        return fmt::format("the cue ball strikes no ball ({} first)", first);
+      });
     const std::string& struck = result.balls[static_cast<size_t>(k)].name;
     if (is_contact_class(first)) {
       if (!contact_allowed(first, struck, problem.scene.balls))
-        return broken(Failure::first_contact,
-                      fmt::format("foul: first contact on {} ({} asked for)", struck, first));
+        return broken<kExplain>(Failure::first_contact, [&] {
+          return fmt::format("foul: first contact on {} ({} asked for)", struck, first);
+        });
     } else if (struck != first) {
-      return broken(Failure::first_contact,
-                    fmt::format("the cue ball strikes {} first, not {}", struck, first));
+      return broken<kExplain>(Failure::first_contact, [&] {
+        return fmt::format("the cue ball strikes {} first, not {}", struck, first);
+      });
     }
     const int before = cushions_before_contact(result);
     const Limits& l = problem.limits;
     if (before < l.cushions_before_contact_min || before > l.cushions_before_contact_max)
-      return broken(Failure::cushions,
-                    fmt::format("the cue ball meets {} cushion{} before it strikes {}, outside the "
-                                "allowed {}",
-                                before, before == 1 ? "" : "s", struck,
-                                count_range(l.cushions_before_contact_min,
-                                            l.cushions_before_contact_max)));
+      return broken<kExplain>(Failure::cushions, [&] {
+        return fmt::format(
+            "the cue ball meets {} cushion{} before it strikes {}, outside the allowed {}", before,
+            before == 1 ? "" : "s", struck,
+            count_range(l.cushions_before_contact_min, l.cushions_before_contact_max));
+      });
   }
   if (problem.pot) {
     const Pot& pot = *problem.pot;
@@ -438,54 +451,69 @@ Verdict check_outcome(const Problem& problem, const physics::ShotResult& result)
       int jaw_pocket = -1;
       for (const physics::ShotEvent& e : ball->events)
         if (e.type == physics::EventType::jaw) jaw_pocket = e.index;
-      return broken(Failure::pot_missed,
-                    fmt::format("{} rattled out of the jaws of the {} pocket (it stops at x = "
-                                "{:.4g} m, y = {:.4g} m)",
-                                pot.ball, pocket_name(problem.scene, jaw_pocket),
-                                ball->final_position.x, ball->final_position.y));
+      return broken<kExplain>(Failure::pot_missed, [&] {
+        return fmt::format(
+            "{} rattled out of the jaws of the {} pocket (it stops at x = {:.4g} m, y = {:.4g} m)",
+            pot.ball, pocket_name(problem.scene, jaw_pocket), ball->final_position.x,
+            ball->final_position.y);
+      });
     }
     if (ball == nullptr || !ball->pocketed)
-      return broken(Failure::pot_missed,
-                    fmt::format("{} does not drop (it stops at x = {:.4g} m, y = {:.4g} m)",
-                                pot.ball, ball ? ball->final_position.x : 0.0,
-                                ball ? ball->final_position.y : 0.0));
+      return broken<kExplain>(Failure::pot_missed, [&] {
+        return fmt::format("{} does not drop (it stops at x = {:.4g} m, y = {:.4g} m)", pot.ball,
+                           ball ? ball->final_position.x : 0.0,
+                           ball ? ball->final_position.y : 0.0);
+      });
     if (ball->pocket != pot.pocket)
-      return broken(Failure::wrong_pocket,
-                    fmt::format("{} drops in the {} pocket, not the {}", pot.ball,
-                                pocket_name(problem.scene, ball->pocket),
-                                pocket_name(problem.scene, pot.pocket)));
+      return broken<kExplain>(Failure::wrong_pocket, [&] {
+        return fmt::format("{} drops in the {} pocket, not the {}", pot.ball,
+                           pocket_name(problem.scene, ball->pocket),
+                           pocket_name(problem.scene, pot.pocket));
+      });
     const Limits& l = problem.limits;
     if (ball->cushion_hits < l.object_cushions_min || ball->cushion_hits > l.object_cushions_max)
-      return broken(Failure::cushions,
-                    fmt::format("{} meets {} cushion{} before it drops, outside the allowed {}",
-                                pot.ball, ball->cushion_hits, ball->cushion_hits == 1 ? "" : "s",
-                                count_range(l.object_cushions_min, l.object_cushions_max)));
+      return broken<kExplain>(Failure::cushions, [&] {
+        return fmt::format("{} meets {} cushion{} before it drops, outside the allowed {}",
+                           pot.ball, ball->cushion_hits, ball->cushion_hits == 1 ? "" : "s",
+                           count_range(l.object_cushions_min, l.object_cushions_max));
+      });
     for (const physics::BallOutcome& b : result.balls)
       if (b.pocketed && b.name != pot.ball && b.name != physics::kCueBallName)
-        return broken(Failure::other_ball_pocketed,
-                      fmt::format("{} drops too (in the {} pocket)", b.name,
-                                  pocket_name(problem.scene, b.pocket)));
+        return broken<kExplain>(Failure::other_ball_pocketed, [&] {
+          return fmt::format("{} drops too (in the {} pocket)", b.name,
+                             pocket_name(problem.scene, b.pocket));
+        });
   }
   const Limits& l = problem.limits;
   if (result.cushion_hits < l.cushions_min || result.cushion_hits > l.cushions_max)
-    return broken(Failure::cushions,
-                  fmt::format("the cue ball meets {} cushion{}, outside the allowed {}",
-                              result.cushion_hits, result.cushion_hits == 1 ? "" : "s",
-                              l.cushions_min == l.cushions_max
-                                  ? fmt::format("{}", l.cushions_min)
-                                  : fmt::format("{}-{}", l.cushions_min, l.cushions_max)));
+    return broken<kExplain>(Failure::cushions, [&] {
+      return fmt::format("the cue ball meets {} cushion{}, outside the allowed {}",
+                         result.cushion_hits, result.cushion_hits == 1 ? "" : "s",
+                         count_range(l.cushions_min, l.cushions_max));
+    });
   const double miss = miss_distance(problem, result);
   if (!(miss <= problem.tolerance))
-    return broken(Failure::off_target,
-                  fmt::format("the cue ball stops {:.3g} mm from the target (tolerance {:.3g} mm)",
-                              1e3 * miss, 1e3 * problem.tolerance));
+    return broken<kExplain>(Failure::off_target, [&] {
+      return fmt::format("the cue ball stops {:.3g} mm from the target (tolerance {:.3g} mm)",
+                         1e3 * miss, 1e3 * problem.tolerance);
+    });
   return {};
+}
+
+}  // namespace
+
+Verdict check_outcome(const Problem& problem, const physics::ShotResult& result) {
+  return judge_outcome<true>(problem, result);
+}
+
+Failure outcome_failure(const Problem& problem, const physics::ShotResult& result) {
+  return judge_outcome<false>(problem, result).failure;
 }
 
 Verdict check_stroke(const Problem& problem, const physics::Shot& shot,
                      const physics::ShotResult& result) {
   if (std::string why = check_shot(problem.limits, shot); !why.empty())
-    return broken(Failure::outside_limits, std::move(why));
+    return {Failure::outside_limits, std::move(why)};
   return check_outcome(problem, result);
 }
 

@@ -188,6 +188,11 @@ enum class Failure {
 // The condition's name: "none", "outside_limits", ..., "off_target".
 const char* to_string(Failure failure);
 
+// Every condition but the cue ball's rest on the target holds (see Verdict::pot_made).
+inline bool pot_made(Failure failure) {
+  return failure == Failure::none || failure == Failure::off_target;
+}
+
 // What a stroke's outcome made of a problem: the first condition broken, in words.
 struct Verdict {
   Failure failure = Failure::none;
@@ -196,7 +201,7 @@ struct Verdict {
   // pot is made cleanly (the ball in its pocket, first contact, no foul, cushions and
   // limits kept). P(pot) counts these strokes, P(position | pot) those of them that
   // also stop on the target.
-  bool pot_made() const { return failure == Failure::none || failure == Failure::off_target; }
+  bool pot_made() const { return problems::pot_made(failure); }
   bool solves() const { return failure == Failure::none; }
 };
 
@@ -211,6 +216,9 @@ struct Verdict {
 //   with a target: the cue ball rests within `tolerance` of it.
 // Without a pot or first_contact these are the conditions of reaches_target.
 Verdict check_outcome(const Problem& problem, const physics::ShotResult& result);
+// check_outcome's failure alone, the reason not put in words: for loops that judge
+// thousands of outcomes and only count them (the same conditions, in the same order).
+Failure outcome_failure(const Problem& problem, const physics::ShotResult& result);
 // The same with the stroke's limits judged first: whether `shot`, with the outcome
 // `result`, solves the problem (the one judgement of planner, simulate and solve).
 Verdict check_stroke(const Problem& problem, const physics::Shot& shot,
