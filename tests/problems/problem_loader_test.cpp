@@ -547,6 +547,67 @@ TEST(ProblemShotChecks, ClassFirstContactFoulsAndKickCushionCounts) {
 }
 
 
+// The planner's inner loops count outcomes with outcome_failure, which leaves the reason
+// unwritten: it must name the same broken condition as check_outcome, for every kind.
+TEST(ProblemShotChecks, OutcomeFailureNamesTheConditionCheckOutcomeNames) {
+  const Problem p = parse_ok("balls: {red1: [1.5, 0.9], blue: [2.0, 0.5]}\n"
+                             "pot: {ball: red1, pocket: top_left}\n" +
+                             std::string(kPositions));
+  physics::ShotResult r;
+  r.balls.resize(3);
+  r.balls[0].name = "cue";
+  r.balls[1].name = "red1";
+  r.balls[2].name = "blue";
+  std::vector<Failure> seen;
+  const auto expect_same = [&](Failure expected) {
+    const Verdict v = check_outcome(p, r);
+    EXPECT_EQ(v.failure, expected) << v.reason;
+    EXPECT_EQ(outcome_failure(p, r), v.failure) << v.reason;
+    EXPECT_EQ(v.failure == Failure::none, v.reason.empty()) << v.reason;
+    seen.push_back(outcome_failure(p, r));
+  };
+  r.status = physics::ShotStatus::pocketed;
+  expect_same(Failure::cue_ball_pocketed);
+  r.status = physics::ShotStatus::hit_obstacle;
+  r.balls[2].events.push_back({});
+  r.balls[2].events.back().type = physics::EventType::obstacle;
+  expect_same(Failure::obstacle);
+  r.balls[2].events.clear();
+  r.status = physics::ShotStatus::event_limit;
+  expect_same(Failure::no_outcome);
+  r.status = physics::ShotStatus::rest;
+  r.first_contact = -1;
+  expect_same(Failure::first_contact);
+  r.first_contact = 2;
+  expect_same(Failure::first_contact);
+  r.first_contact = 1;
+  expect_same(Failure::pot_missed);
+  r.balls[1].jaw_hits = 1;  // rattled in the jaws
+  expect_same(Failure::pot_missed);
+  r.balls[1].pocketed = true;
+  r.balls[1].pocket = 4;
+  expect_same(Failure::wrong_pocket);
+  r.balls[1].pocket = 3;  // top_left
+  r.balls[2].pocketed = true;
+  r.balls[2].pocket = 0;
+  expect_same(Failure::other_ball_pocketed);
+  r.balls[2].pocketed = false;
+  r.cushion_hits = 5;  // the default limits allow 1 to 3
+  expect_same(Failure::cushions);
+  r.cushion_hits = 2;
+  r.final_position = {2.5, 1.0};
+  expect_same(Failure::off_target);
+  r.final_position = {2.005, 1.0};
+  expect_same(Failure::none);
+  for (const Failure f : {Failure::no_outcome, Failure::obstacle, Failure::cue_ball_pocketed,
+                          Failure::first_contact, Failure::pot_missed, Failure::wrong_pocket,
+                          Failure::other_ball_pocketed, Failure::cushions, Failure::off_target,
+                          Failure::none})
+    EXPECT_NE(std::find(seen.begin(), seen.end(), f), seen.end()) << to_string(f);
+  EXPECT_TRUE(pot_made(Failure::off_target));
+  EXPECT_FALSE(pot_made(Failure::wrong_pocket));
+}
+
 TEST(ProblemShotChecks, LimitsBoundSpeedSpinAndAimModuloTurns) {
   Limits l;
   EXPECT_EQ(check_shot(l, {1.0, 10.0, 1.0, 0.0}), "");
