@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "ball_collision_model.hpp"
+#include "cueplan/physics/vec2.hpp"
 
 namespace cueplan::physics {
 namespace {
@@ -74,7 +75,7 @@ CollisionResult closed_form(const BallBallParams& p, const BallState& i, const B
   const double normal = 0.5 * (1.0 + p.restitution) * m * a0;
   const double bt = i.velocity.x - j.velocity.x - radius * (i.spin.z + j.spin.z);
   const double bz = radius * (i.spin.x + j.spin.x);
-  const double slip = std::hypot(bt, bz);
+  const double slip = vec2::length(bt, bz);
   double ft = 0.0, fz = 0.0;
   if (slip > 0.0) {
     const double mu =
@@ -277,8 +278,8 @@ CollisionResult resolve_collision(const BallBallParams& params, const BallState&
   if (params.model == BallModel::frictional_inelastic) return closed_form(params, ball_i, ball_j);
 
   // Scaled by the faster ball's speed (ball_collision_model.hpp).
-  const double v = std::max(std::hypot(ball_i.velocity.x, ball_i.velocity.y),
-                            std::hypot(ball_j.velocity.x, ball_j.velocity.y));
+  const double v = std::max(vec2::length(ball_i.velocity.x, ball_i.velocity.y),
+                            vec2::length(ball_j.velocity.x, ball_j.velocity.y));
   const double o = params.radius / v;
   auto scaled = [&](const BallState& b) {
     return detail::ScaledBall{b.velocity.x / v, b.velocity.y / v, b.spin.x * o, b.spin.y * o,
@@ -312,7 +313,7 @@ CollisionResult resolve_table_collision(const BallBallParams& params, Vec3 centr
       return invalid_result(params, invalid({name, "y"}, "must be finite (m)", centre.y));
   }
   const double dx = centre_j.x - centre_i.x, dy = centre_j.y - centre_i.y;
-  const double distance = std::hypot(dx, dy);
+  const double distance = vec2::length(dx, dy);
   if (!(distance > 0.0)) {
     ValidationError why = invalid({"centre_j"}, "must differ from {other} in x or y");
     why.other = FieldPath{"centre_i"};

@@ -60,7 +60,7 @@ inline Piece piece_from(const ClothModel& m, const Ball& b) {
   const Vec2 u = m.slip(b);
   const double us = norm(u);
   const double speed = norm(b.v);
-  const double scale = speed + m.radius * std::hypot(b.w.x, b.w.y);
+  const double scale = speed + m.radius * vec2::length(b.w.x, b.w.y);
   if (us > 1e-12 * scale && us > 0.0) {
     // Sliding: friction against the slip, which keeps its direction and shrinks
     // at 7/2 mu_s g.

@@ -27,6 +27,8 @@
 #include <cstddef>
 #include <limits>
 
+#include "cueplan/physics/vec2.hpp"
+
 namespace cueplan::physics::detail {
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
@@ -185,7 +187,7 @@ bool Extrapolator<N>::step(Rhs&& rhs, double t, const State& y, const State& f0,
 // A slip at a contact, in that contact's tangent plane.
 struct PlanarSlip {
   double x = 0.0, y = 0.0;
-  double magnitude() const { return std::hypot(x, y); }
+  double magnitude() const { return vec2::length(x, y); }
 };
 
 // What a moving slip asked of the next step.

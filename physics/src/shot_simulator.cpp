@@ -466,10 +466,10 @@ class ShotRun {
       // |a1 x a2| t^2 / |a1| at most, so it misses when the line misses by more than the
       // radius and that stray over the horizon (a straight path - rolling, or sliding
       // with the slip along the motion - strays by nothing).
-      const double speed = std::hypot(q.a1.x, q.a1.y);
+      const double speed = vec2::length(q.a1.x, q.a1.y);
       if (speed > 0.0) {
         const double bend = q.a1.x * q.a2.y - q.a1.y * q.a2.x;
-        const bool straight = std::abs(bend) <= 1e-12 * speed * std::hypot(q.a2.x, q.a2.y);
+        const bool straight = std::abs(bend) <= 1e-12 * speed * vec2::length(q.a2.x, q.a2.y);
         const double stray = straight ? 0.0 : std::abs(bend) / speed * horizon * horizon;
         const Vec2 r = q.a0 - w.point[side];
         const double miss = std::abs(q.a1.x * r.y - q.a1.y * r.x) / speed;
@@ -571,7 +571,7 @@ class ShotRun {
   bool approaching(const Next& next) const {
     const Ball a = state_at(next.ball, next.time), b = state_at(next.other, next.time);
     const Vec2 d = b.p - a.p;
-    const double distance = std::hypot(d.x, d.y);
+    const double distance = vec2::length(d.x, d.y);
     if (!(distance > 0.0)) return false;
     const Vec2 n{d.x / distance, d.y / distance};
     return dot(a.v, n) > dot(b.v, n);
@@ -686,7 +686,7 @@ class ShotRun {
     // (Whether friction presses the ball in is asked only of an approach within rounding
     // of none.)
     if (!(in.velocity.y > 0.0) ||
-        (in.velocity.y <= kRoundingApproach * std::hypot(in.velocity.x, in.velocity.y) &&
+        (in.velocity.y <= kRoundingApproach * vec2::length(in.velocity.x, in.velocity.y) &&
          dot(detail::piece_from(cloth_, b).accel, n) > 0.0)) {
       // Friction on the cloth presses the ball into the cushion with no approach speed
       // left (a run of ever smaller bounces, each e times the last: the exact method
@@ -739,7 +739,7 @@ class ShotRun {
     const int side = jaw_side(part);
     if (!is_point(part)) return w.facing[side].normal;
     const Vec2 d = w.point[side] - p;
-    return (1.0 / std::hypot(d.x, d.y)) * d;
+    return (1.0 / vec2::length(d.x, d.y)) * d;
   }
 
   // A contact of balls i < j, resolved along their line of centres by the collision
@@ -757,7 +757,7 @@ class ShotRun {
       return;
     }
     const Vec2 d = b.p - a.p;
-    const double approach = dot(a.v - b.v, (1.0 / std::hypot(d.x, d.y)) * d);
+    const double approach = dot(a.v - b.v, (1.0 / vec2::length(d.x, d.y)) * d);
     const double speed = std::max(detail::norm(a.v), detail::norm(b.v));
     a.v = {out.ball_i.velocity.x, out.ball_i.velocity.y};
     a.w = out.ball_i.spin;
@@ -768,7 +768,7 @@ class ShotRun {
     // Exactly 2R apart (a hair more), so that rounding never leaves them overlapping and
     // their next contact is a crossing of 2R that the search finds (as a ball that met a
     // cushion is put on its contact line).
-    const double distance = std::hypot(d.x, d.y), diameter = 2.0 * cloth_.radius;
+    const double distance = vec2::length(d.x, d.y), diameter = 2.0 * cloth_.radius;
     const double apart = diameter * (1.0 + 4e-16);
     if (distance < apart && distance > diameter * (1.0 - 1e-9)) {
       const Vec2 shift = (0.5 * (apart - distance) / distance) * d;
@@ -817,7 +817,7 @@ class ShotRun {
   // Whether a ball barely moves: it would roll on less than kSettleDistance.
   bool crawling(const Ball& b) const {
     const double crawl = std::sqrt(2.0 * cloth_.roll_decel * kSettleDistance);  // m/s
-    return detail::norm(b.v) <= crawl && cloth_.radius * std::hypot(b.w.x, b.w.y) <= crawl;
+    return detail::norm(b.v) <= crawl && cloth_.radius * vec2::length(b.w.x, b.w.y) <= crawl;
   }
 
   static void stop(Ball* b) {

@@ -146,15 +146,18 @@ TEST(FitCli, RecoversSimulatedStrokes) {
     // its side (PHYSICS.md, "Squirt and swerve"). The cue's aim itself is that less the
     // squirt of the fitted side, as uncertain as the side is where the shot barely shows
     // it; it is held to the squirt of a quarter of the side's range. The launch is held to
-    // 0.2 deg: with 1 cm of noise the data fix it to about that (on one set of these tracks
-    // the best fit found, 10 restarts and the lowest RMSE, leaves 0.14 deg from the truth).
+    // 0.4 deg: with the cue's elevation in the search the data do not fix it better, as the
+    // swerve of a slightly raised cue bends the path as a slightly other aim would. Shot 2,
+    // refitted with 6, 10 and 20 restarts: elevation 2.1, 1.2, 0.6 deg, launch 0.32, 0.18,
+    // 0.09 deg off, RMSE 14.210, 14.199, 14.198 mm (1 cm noise a coordinate): fits apart by
+    // 0.01 mm of RMSE, which rounding in the simulation moves between.
     const phys::Scene table = prob::carom_scene();
     const auto squirt = [&](double k) {
       return phys::squirt_angle_deg(table.cue, table.ball_and_cushion.mass, table.radius(), k);
     };
     const double fitted_launch = aim + squirt(j["shot"]["sidespin_k"].get<double>());
     const double true_launch = t.shot.aim_deg + squirt(t.shot.sidespin_k);
-    EXPECT_LT(std::fabs(angle_diff(fitted_launch, true_launch)), 0.2)
+    EXPECT_LT(std::fabs(angle_diff(fitted_launch, true_launch)), 0.4)
         << "shot " << i + 1 << ": the cue ball leaves at " << fitted_launch << " vs " << true_launch;
     EXPECT_LT(std::fabs(angle_diff(aim, t.shot.aim_deg)), std::fabs(squirt(0.3125)))
         << "shot " << i + 1 << ": aim " << aim << " vs " << t.shot.aim_deg;

@@ -3,8 +3,7 @@
 //
 // The operations live in their own namespace, brought in where they are used
 // (`using namespace cueplan::physics::vec2;`), so that argument-dependent lookup never
-// finds them and files with helpers of their own keep them. Each is written with the
-// arithmetic of the helpers it replaces, term for term, so results stay bit-identical.
+// finds them and files with helpers of their own keep them.
 #pragma once
 
 #include <cmath>
@@ -19,6 +18,15 @@ inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 // The z component of a x b: > 0 when b lies counter-clockwise of a.
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+// |(x, y)|: the square root of the sum of the squares, within an ulp of std::hypot and
+// about half its time (no correction step after the root, which made hypot 8 % of a
+// plan's time); std::hypot where a square could underflow or overflow (|x|, |y| below
+// 1e-150 or above 1e150), and for the zero vector and non-finite input.
+inline double length(double x, double y) {
+  const double s = x * x + y * y;
+  if (s >= 0x1p-1000 && s <= 0x1p1000) return std::sqrt(s);
+  return std::hypot(x, y);
+}
+inline double norm(Vec2 a) { return length(a.x, a.y); }
 
 }  // namespace cueplan::physics::vec2
