@@ -180,13 +180,14 @@ double next_uniform(size_t draw) {
 }
 
 uint8_t judge(const Task& task, const physics::ShotResult& result, size_t draw, float* next_p) {
-  const problems::Verdict v{problems::outcome_failure(task.problem, result), {}};
+  const problems::Failure failure = problems::outcome_failure(task.problem, result);
+  const bool pot_made = problems::pot_made(failure), solves = failure == problems::Failure::none;
   if (next_p) *next_p = 0.0f;
-  if (task.next_field && v.pot_made()) {
+  if (task.next_field && pot_made) {
     // Position play: the next pot from where the cue ball stops, drawn by this draw's
     // uniform (the same for every stroke: paired comparisons stay paired).
     uint8_t bits = kPotted;
-    if (v.solves()) {
+    if (solves) {
       bits |= kOnTarget;
       const PositionField& field = *task.next_field;
       if (next_p) *next_p = static_cast<float>(field.next_shot(result.final_position).p);
@@ -194,9 +195,9 @@ uint8_t judge(const Task& task, const physics::ShotResult& result, size_t draw, 
     }
     return bits;
   }
-  if (v.solves()) return kSucceeded;
+  if (solves) return kSucceeded;
   // Without a pot there is nothing to pot: every stroke played counts as potting.
-  return !task.problem.pot || v.pot_made() ? kPotted : 0;
+  return !task.problem.pot || pot_made ? kPotted : 0;
 }
 
 Success success_of(const Task& task, const std::vector<uint8_t>& outcomes,
