@@ -6,6 +6,11 @@
 // Counters: `differ`, the share of roots that are not bit for bit bisection's (both are
 // roots to rounding: a sign change between neighbouring doubles, or an exact zero), and
 // `worst_relative`, the largest |difference| / root.
+//
+// BM_Length: the simulator's vector length (cueplan/physics/vec2.hpp, the root of the sum
+// of squares) against std::hypot, on 4096 velocity-like vectors: `chain`, each length
+// feeding the next input (the latency the event loop sees), and `independent` (the
+// throughput).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -14,6 +19,7 @@
 #include <random>
 #include <vector>
 
+#include "cueplan/physics/vec2.hpp"
 #include "polynomial_roots.hpp"
 
 namespace {
@@ -93,6 +99,35 @@ void BM_EventRoot(benchmark::State& state, bool use_newton) {
 
 BENCHMARK_CAPTURE(BM_EventRoot, bisection, false);
 BENCHMARK_CAPTURE(BM_EventRoot, newton, true);
+
+// hypot: true for std::hypot, false for vec2::length; chain: each result feeds the next.
+void BM_Length(benchmark::State& state, bool hypot, bool chain) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> component(-5.0, 5.0);
+  std::vector<double> xs(4096), ys(4096);
+  for (size_t i = 0; i < xs.size(); ++i) {
+    xs[i] = component(rng);
+    ys[i] = component(rng);
+  }
+  const auto length = [hypot](double x, double y) {
+    return hypot ? std::hypot(x, y) : cueplan::physics::vec2::length(x, y);
+  };
+  double carry = 0.0;
+  for (auto _ : state) {
+    double sum = 0.0;
+    for (size_t i = 0; i < xs.size(); ++i) {
+      const double l = length(xs[i], ys[i] + carry);
+      sum += l;
+      if (chain) carry = 1e-300 * l;  // a dependence, not a change of the inputs
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(xs.size()));
+}
+BENCHMARK_CAPTURE(BM_Length, hypot_chain, true, true);
+BENCHMARK_CAPTURE(BM_Length, length_chain, false, true);
+BENCHMARK_CAPTURE(BM_Length, hypot_independent, true, false);
+BENCHMARK_CAPTURE(BM_Length, length_independent, false, false);
 
 }  // namespace
 
